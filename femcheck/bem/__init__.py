@@ -1,0 +1,1 @@
+"""Boundary-integral (half-space / half-plane) contact models."""

@@ -1,0 +1,1 @@
+"""Finite-element reference models (Gmsh meshes, scikit-fem assembly, own contact algorithms)."""
