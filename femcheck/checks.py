@@ -1,0 +1,25 @@
+"""Physical sanity checks applied to every model result: a wrong answer must never pass silently."""
+from __future__ import annotations
+
+import numpy as np
+
+from .result import ModelResult
+
+LOAD_BALANCE_TOL = 1e-6
+
+
+def physical_violations(res: ModelResult, applied_load: float) -> list[str]:
+    """Non-finite quantities, negative pressures and load imbalance |total_force - W| / W > 1e-6."""
+    issues = [f"non-finite {k}" for k, v in res.quantities.items() if not np.isfinite(v)]
+    p = res.fields.get("pressure")
+    if p is not None:
+        if not np.all(np.isfinite(p)):
+            issues.append("non-finite pressure field")
+        elif p.min() < 0:
+            issues.append(f"negative pressure {p.min():.3e} Pa")
+    f = res.quantities.get("total_force")
+    if f is not None and np.isfinite(f):
+        imbalance = abs(f - applied_load) / applied_load
+        if imbalance > LOAD_BALANCE_TOL:
+            issues.append(f"load imbalance {imbalance:.2e} > {LOAD_BALANCE_TOL:g}")
+    return issues

@@ -1,0 +1,210 @@
+"""Plane-strain line contact: a cylinder (elastic or rigid) pressed on a flat elastic block (hertz-line).
+
+Models: ``analytic`` (Hertz + McEwen stresses), ``bem`` (half-plane boundary integral), ``fem`` (Gmsh +
+scikit-fem, mesh levels with Richardson extrapolation).
+"""
+from __future__ import annotations
+
+import time
+from typing import Any, Callable
+
+import numpy as np
+
+from ..analytic import hertz
+from ..analytic.stress import line_contact_field
+from ..bem.line import solve_line_contact
+from ..errors import ConvergenceError, InputError
+from ..fem.line_contact import FEMLineSettings, extrapolate, solve_level
+from ..materials import effective_modulus
+from ..qoi import half_width
+from ..result import ModelResult
+from ..scene import Key, Scene, material_keys, tolerance_key
+
+MODEL_NAMES = ("analytic", "bem", "fem")
+MAX_A_OVER_R = 0.1   # beyond this the half-space and small-strain assumptions of every model here fail
+
+SCHEMA: dict[str, Key] = {
+    "geometry.radius": Key("float", "m", "cylinder radius R", lo=0.0),
+    "load.per_length": Key("float", "N/m", "normal load per unit length W'", lo=0.0),
+    **material_keys("cylinder"),
+    **{k: v for k, v in material_keys("block").items() if not k.endswith("rigid")},
+    "outputs.subsurface_stress": Key("bool", "-", "compute the sub-surface stress field (analytic)"),
+    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
+    "models.references": Key("list", "-", "models every other model is compared against",
+                             choices=("analytic", "fem")),
+    "numerics.bem_elements": Key("int", "-", "BEM strips over the domain", lo=16, hi=2**20, lo_closed=True,
+                                 hi_closed=True),
+    "numerics.bem_domain": Key("float", "a_H", "BEM domain half-length / Hertz half-width", lo=1.05, hi=20.0,
+                               hi_closed=True),
+    "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
+    "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson)", lo=1, hi=6,
+                               lo_closed=True, hi_closed=True),
+    "numerics.fem_h_contact": Key("float", "a_H", "coarsest element size on the contact / a_H", lo=0.0,
+                                  hi=0.5, hi_closed=True),
+    "numerics.fem_grading": Key("float", "-", "coarsest mesh growth rate away from the contact", lo=0.0,
+                                hi=1.0, hi_closed=True),
+    "numerics.fem_contact_zone": Key("float", "a_H", "candidate contact zone / a_H", lo=1.05, hi=3.0,
+                                     hi_closed=True),
+    "numerics.fem_block_width": Key("float", "a_H", "block width / a_H", lo=40.0, hi=1000.0, lo_closed=True,
+                                    hi_closed=True),
+    "numerics.fem_block_depth": Key("float", "a_H", "block depth / a_H", lo=20.0, hi=1000.0, lo_closed=True,
+                                    hi_closed=True),
+    "numerics.fem_order": Key("int", "-", "element order (P1 or P2)", lo=1, hi=2, lo_closed=True,
+                              hi_closed=True),
+    "numerics.fem_method": Key("str", "-", "contact algorithm", choices=("active_set", "penalty")),
+    "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E* / h)", lo=1.0, hi=1e9, hi_closed=True),
+    "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+}
+
+_FEM = FEMLineSettings()
+DEFAULTS: dict[str, Any] = {
+    "materials.cylinder.rigid": False,
+    "outputs.subsurface_stress": False,
+    "models.run": list(MODEL_NAMES),
+    "models.references": ["analytic", "fem"],
+    "numerics.bem_elements": 1024,
+    "numerics.bem_domain": 1.25,
+    "numerics.bem_tol": 1e-10,
+    "numerics.fem_levels": _FEM.levels,
+    "numerics.fem_h_contact": _FEM.h_contact,
+    "numerics.fem_grading": _FEM.grading,
+    "numerics.fem_contact_zone": _FEM.contact_zone,
+    "numerics.fem_block_width": _FEM.block_width,
+    "numerics.fem_block_depth": _FEM.block_depth,
+    "numerics.fem_order": _FEM.order,
+    "numerics.fem_method": _FEM.method,
+    "numerics.fem_penalty": _FEM.penalty_factor,
+}
+REQUIRED = ("geometry.radius", "load.per_length", "materials.block.E", "materials.block.nu")
+
+# Keys that determine each model's result (the FEM cache key hashes these).
+DEPENDS = {
+    "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
+            "code": ("fem", "problems/line_contact.py", "qoi.py", "materials.py", "result.py")},
+}
+
+
+def _hertz(params: dict[str, Any]) -> hertz.LineContact:
+    from ..materials import Elastic
+
+    cyl = Elastic(params.get("materials.cylinder.E", 1.0), params.get("materials.cylinder.nu", 0.0),
+                  params["materials.cylinder.rigid"])
+    blk = Elastic(params["materials.block.E"], params["materials.block.nu"])
+    return hertz.line_contact(params["load.per_length"], params["geometry.radius"], effective_modulus(cyl, blk))
+
+
+def validate(params: dict[str, Any]) -> None:
+    """Cross-key checks: an elastic cylinder needs E and nu; the contact must stay small against R."""
+    if not params["materials.cylinder.rigid"]:
+        for k in ("materials.cylinder.E", "materials.cylinder.nu"):
+            if k not in params:
+                raise InputError(k, "required for an elastic cylinder (or set materials.cylinder.rigid = true)")
+    h = _hertz(params)
+    ratio = h.half_width / params["geometry.radius"]
+    if ratio > MAX_A_OVER_R:
+        w_max = params["load.per_length"] * (MAX_A_OVER_R / ratio) ** 2
+        raise InputError("load.per_length", f"{params['load.per_length']:g} N/m gives a Hertz half-width a/R = "
+                         f"{ratio:.3g} > {MAX_A_OVER_R} (half-space and small-strain assumptions fail); "
+                         f"allowed (0, {w_max:.4g}] N/m for this radius and these materials")
+
+
+def _profile_gap(radius: float) -> Callable[[np.ndarray], np.ndarray]:
+    """Initial gap of a circular cylinder over a flat, exact (not the parabolic Hertz approximation)."""
+    return lambda x: radius - np.sqrt(np.clip(radius**2 - x**2, 0.0, None))
+
+
+def analytic(scene: Scene, progress=None) -> ModelResult:
+    """Hertz line contact (seed 001 eqs 1-5); sub-surface stresses (McEwen) only when the scene asks."""
+    h = _hertz(scene.params)
+    x = np.linspace(-1.5 * h.half_width, 1.5 * h.half_width, 601)
+    q = {"p_max": h.p_max, "half_width": h.half_width, "total_force": h.load}
+    fields = {"x": x, "pressure": h.pressure(x)}
+    stats: dict[str, Any] = {"E_star": h.modulus, "a_over_R": h.half_width / h.radius}
+    if scene["outputs.subsurface_stress"]:
+        f = line_contact_field(h, scene["materials.block.nu"])
+        q.update({k: f.maxima[k] for k in ("von_mises_max", "von_mises_max_depth", "tau_max", "tau_xz_max")})
+        stats["stress_maxima"] = f.maxima
+        stats["stress_body"] = "block"
+        fields.update({"stress_x": f.x, "stress_z": f.z, "von_mises": f.von_mises, "tresca": f.tresca,
+                       "tau_xz": f.components["tau_xz"]})
+    return ModelResult("analytic", quantities=q, stats=stats, fields=fields)
+
+
+def bem(scene: Scene, progress=None) -> ModelResult:
+    """Half-plane BEM: uniform strips, exact influence coefficients, DC-FFT, Polonsky-Keer CG."""
+    h = _hertz(scene.params)
+    half_domain = scene["numerics.bem_domain"] * h.half_width
+    sol = solve_line_contact(_profile_gap(scene["geometry.radius"]), h.modulus, scene["load.per_length"],
+                             half_domain, scene["numerics.bem_elements"], tol=scene["numerics.bem_tol"])
+    r = sol.result
+    if r.contact[0] or r.contact[-1]:
+        raise ConvergenceError("BEM line contact", r.iterations, r.residual, scene["numerics.bem_tol"],
+                               "contact reaches the edge of the BEM domain; raise numerics.bem_domain")
+    q = {"p_max": float(r.pressure.max()), "half_width": half_width(sol.x, r.pressure), "total_force": r.load}
+    stats = {"iterations": r.iterations, "residual": r.residual, "n_elements": sol.x.size, "dx": sol.dx,
+             "domain_half_length": half_domain, "solver": "polonsky_keer", "convolution": "dcfft",
+             "contact_cells": int(r.contact.sum())}
+    return ModelResult("bem", quantities=q, stats=stats, fields={"x": sol.x, "pressure": r.pressure})
+
+
+def fem_settings(scene: Scene) -> FEMLineSettings:
+    n = scene.section("numerics")
+    return FEMLineSettings(levels=n["fem_levels"], h_contact=n["fem_h_contact"], grading=n["fem_grading"],
+                           contact_zone=n["fem_contact_zone"], block_width=n["fem_block_width"],
+                           block_depth=n["fem_block_depth"], order=n["fem_order"], method=n["fem_method"],
+                           penalty_factor=n["fem_penalty"])
+
+
+def _crop(mesh, a: float, extent: float = 3.0) -> dict[str, np.ndarray]:
+    """The part of a mesh within ``extent`` a of the contact, for the report picture."""
+    inside = (mesh.points[0] <= extent * a) & (np.abs(mesh.points[1]) <= extent * a)
+    keep = inside[mesh.triangles].all(axis=0)
+    return {"points": mesh.points, "triangles": mesh.triangles[:, keep]}
+
+
+def fem(scene: Scene, progress=None) -> ModelResult:
+    """2D plane-strain FEM on ``numerics.fem_levels`` meshes; quantities are Richardson-extrapolated when there
+    are >= 3 levels (stats carry every level, the finest values and the error estimates)."""
+    h = _hertz(scene.params)
+    s = fem_settings(scene)
+    levels = []
+    for k in range(s.levels):
+        if progress:
+            progress(f"FEM level {k + 1}/{s.levels}")
+        levels.append(solve_level(scene["geometry.radius"], scene.material("cylinder"),
+                                  scene.material("block"), scene["load.per_length"], h.half_width, k, s))
+    fine = levels[-1]
+    finest = {"p_max": fine.p_max, "half_width": fine.half_width}
+    stats: dict[str, Any] = {
+        "method": s.method, "element_order": s.order, "finest": finest,
+        "levels": [{"h": lv.h, "h_over_a": lv.h / h.half_width, "n_dofs": lv.n_dofs,
+                    "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
+                    "iterations": lv.iterations, "residual": lv.residual, "penetration": lv.penetration,
+                    "total_force": lv.total_force, "time_s": lv.time_s} for lv in levels],
+        "block": {"width": s.block_width * h.half_width, "depth": s.block_depth * h.half_width},
+    }
+    q = dict(finest)
+    if s.levels >= 3:
+        rich = {name: extrapolate(levels, name) for name in ("p_max", "half_width")}
+        stats["richardson"] = {k: v.as_dict() for k, v in rich.items()}
+        q = {k: v.value for k, v in rich.items()}
+    q["total_force"] = fine.total_force
+    fields = {"x": fine.x, "pressure": fine.p}
+    for body, mesh in fine.meshes.items():
+        crop = _crop(mesh, h.half_width)
+        fields[f"mesh_{body}_points"] = crop["points"]
+        fields[f"mesh_{body}_triangles"] = crop["triangles"]
+    return ModelResult("fem", quantities=q, stats=stats, fields=fields)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem}
+
+
+def load_of(scene: Scene) -> float:
+    """Applied load (N/m) against which every model's ``total_force`` is checked."""
+    return scene["load.per_length"]
+
+
+def profile_scale(scene: Scene) -> float:
+    """Length (m) that sets the common grid of pressure-profile comparisons."""
+    return _hertz(scene.params).half_width

@@ -1,0 +1,125 @@
+"""Matplotlib figures for reports (Agg backend, PNG files). Lengths are shown in mm, pressures in GPa."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
+
+from ..result import RunResult  # noqa: E402
+
+STYLE = {"analytic": dict(color="k", lw=1.2), "bem": dict(color="tab:blue", ls="--", lw=1.4),
+         "fem": dict(color="tab:red", marker=".", ms=3, ls="none")}
+
+
+def _save(fig, path: Path) -> str:
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path.name
+
+
+def pressure_overlay(run: RunResult, path: Path) -> str | None:
+    """Pressure profiles of every model on one axis (x >= 0; the profiles are symmetric)."""
+    models = {k: m for k, m in run.models.items() if m.status == "ok" and "pressure" in m.fields}
+    if not models:
+        return None
+    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    for name, m in models.items():
+        x, p = m.fields["x"], m.fields["pressure"]
+        keep = x >= 0
+        ax.plot(x[keep] * 1e3, p[keep] / 1e9, label=name, **STYLE.get(name, {}))
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("contact pressure (GPa)")
+    ax.set_title(f"{run.scene}: pressure profiles")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def fem_mesh(run: RunResult, path: Path) -> str | None:
+    """The FE mesh near the contact (finest level), coloured by body."""
+    m = run.models.get("fem")
+    if m is None or m.status != "ok":
+        return None
+    bodies = [b for b in ("block", "cylinder") if f"mesh_{b}_points" in m.fields]
+    if not bodies:
+        return None
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    for body, colour in zip(bodies, ("tab:blue", "tab:red")):
+        pts, tri = m.fields[f"mesh_{body}_points"], m.fields[f"mesh_{body}_triangles"]
+        ax.triplot(Triangulation(pts[0] * 1e3, pts[1] * 1e3, tri.T), lw=0.25, color=colour, label=body)
+    a = m.quantities.get("half_width", 1e-3)
+    ax.set_xlim(0, 3 * a * 1e3)
+    ax.set_ylim(-2 * a * 1e3, 1 * a * 1e3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title("FE mesh near the contact (finest level, symmetric half)")
+    ax.legend(loc="lower right")
+    return _save(fig, path)
+
+
+def fem_convergence(run: RunResult, path: Path) -> str | None:
+    """Relative change of each FEM quantity against its Richardson estimate, per level (log-log)."""
+    m = run.models.get("fem")
+    if m is None or m.status != "ok" or "richardson" not in m.stats:
+        return None
+    levels = m.stats["levels"]
+    h = np.array([lv["h_over_a"] for lv in levels])
+    fig, ax = plt.subplots(figsize=(5.2, 3.8))
+    ref = run.models.get("analytic")
+    for q, mk in (("p_max", "o"), ("half_width", "s")):
+        vals = np.array([lv[q] for lv in levels])
+        if ref is not None and ref.status == "ok" and q in ref.quantities:
+            err = np.abs(vals / ref.quantities[q] - 1)
+            ax.loglog(h, np.maximum(err, 1e-8), marker=mk, label=f"{q} vs analytic")
+    ax.set_xlabel("element size on the contact / a")
+    ax.set_ylabel("relative error")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    ax.set_title("FEM mesh convergence")
+    return _save(fig, path)
+
+
+def stress_field(run: RunResult, path: Path) -> str | None:
+    """Von Mises and orthogonal shear tau_xz below the contact (analytic)."""
+    m = run.models.get("analytic")
+    if m is None or "von_mises" not in m.fields:
+        return None
+    x, z = m.fields["stress_x"], m.fields["stress_z"]
+    p0 = m.quantities["p_max"]
+    fig, axes = plt.subplots(1, 2, figsize=(9.6, 3.6), sharey=True)
+    for ax, key, title, cmap in ((axes[0], "von_mises", "von Mises / p0", "viridis"),
+                                 (axes[1], "tau_xz", "tau_xz / p0", "RdBu_r")):
+        f = m.fields[key] / p0
+        lim = np.abs(f).max()
+        cs = ax.contourf(x * 1e3, z * 1e3, f, levels=21, cmap=cmap,
+                         vmin=-lim if key == "tau_xz" else 0, vmax=lim)
+        fig.colorbar(cs, ax=ax)
+        ax.set_title(title)
+        ax.set_xlabel("x (mm)")
+    axes[0].invert_yaxis()
+    axes[0].set_ylabel("depth z (mm)")
+    return _save(fig, path)
+
+
+def time_error(rows: list[dict], path: Path, title: str) -> str:
+    """Log-log run time against error, one line per model and quantity (bench)."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for model in sorted({r["model"] for r in rows}):
+        for q, mk in (("p_max", "o"), ("half_width", "s"), ("pressure_profile_l2", "^")):
+            pts = [(r["time_s"], r[f"err_{q}"]) for r in rows if r["model"] == model and r.get(f"err_{q}")]
+            if pts:
+                t, e = zip(*pts)
+                ax.loglog(t, e, marker=mk, label=f"{model}: {q}")
+    ax.set_xlabel("run time (s)")
+    ax.set_ylabel("relative error vs analytic")
+    ax.set_title(title)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    return _save(fig, path)

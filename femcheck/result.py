@@ -1,0 +1,95 @@
+"""Result objects shared by every model, the runner, the comparison and the report."""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+
+
+@dataclass
+class ModelResult:
+    """What one model returns for one scene.
+
+    ``quantities``: scalar quantities of interest in SI units, named as in DESIGN.md (``p_max``, ...); a model
+    leaves out what it cannot produce. ``stats``: solver statistics (iterations, residuals, DOFs, mesh
+    levels, ...), JSON-serialisable. ``fields``: arrays on the model's own grid (e.g. ``x``, ``pressure``),
+    kept out of the JSON. ``status`` is ``ok``, ``failed`` (``error`` says why) or ``skipped``.
+    """
+
+    model: str
+    status: str = "ok"
+    time_s: float = 0.0
+    quantities: dict[str, float] = field(default_factory=dict)
+    stats: dict[str, Any] = field(default_factory=dict)
+    fields: dict[str, np.ndarray] = field(default_factory=dict)
+    error: str | None = None
+    cached: bool = False
+
+    def to_json(self) -> dict[str, Any]:
+        out = {"status": self.status, "time_s": self.time_s, "quantities": dict(self.quantities),
+               "stats": _jsonable(self.stats)}
+        if self.error is not None:
+            out["error"] = self.error
+        if self.cached:
+            out["cached"] = True
+        return out
+
+
+@dataclass
+class Comparison:
+    """One quantity of ``model`` against ``reference``: rel_error = |value - ref| / |ref| (profile norms are
+    already relative and carry reference_value 0)."""
+
+    quantity: str
+    model: str
+    reference: str
+    value: float
+    reference_value: float
+    rel_error: float
+    tolerance: float | None
+    passed: bool | None
+
+    def to_json(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["pass"] = d.pop("passed")
+        return d
+
+
+@dataclass
+class RunResult:
+    """A scene run: parameters, per-model results and comparisons (the ``--json`` object)."""
+
+    scene: str
+    params: dict[str, Any]
+    models: dict[str, ModelResult]
+    comparisons: list[Comparison]
+    kind: str = ""
+    description: str = ""
+
+    @property
+    def passed(self) -> bool:
+        ok = all(m.status != "failed" for m in self.models.values())
+        return ok and all(c.passed is not False for c in self.comparisons)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"scene": self.scene, "params": _jsonable(self.params),
+                "models": {k: v.to_json() for k, v in self.models.items()},
+                "comparisons": [c.to_json() for c in self.comparisons]}
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _jsonable(obj.tolist())
+    if isinstance(obj, (np.floating, float)):
+        v = float(obj)
+        return v if np.isfinite(v) else None
+    if isinstance(obj, (np.integer,)):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj

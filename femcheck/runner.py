@@ -1,0 +1,69 @@
+"""Scene -> models -> comparisons. Decides what a scene needs, runs it, caches expensive results."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any, Callable
+
+from . import cache
+from .checks import physical_violations
+from .compare import compare
+from .errors import ConvergenceError, InputError
+from .problems import problem
+from .result import ModelResult, RunResult
+from .scene import Scene, load_scene
+
+Progress = Callable[[str], None]
+
+
+def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = None) -> Scene:
+    if isinstance(scene, Scene):
+        return scene.with_overrides(overrides) if overrides else scene
+    return load_scene(scene, overrides)
+
+
+def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = False,
+              progress: Progress | None = None) -> ModelResult:
+    """Run one model; failures become ``status='failed'`` with the reason, never an exception (bad input
+    still raises InputError). Results of models listed in the kind's DEPENDS are cached."""
+    prob = problem(scene.kind)
+    dep = prob.DEPENDS.get(name)
+    k = None
+    if dep is not None and use_cache:
+        k = cache.key(scene.kind, name, scene.params, dep["params"], dep["code"])
+        if not rebuild and (hit := cache.load(k)) is not None:
+            return hit
+    t0 = time.perf_counter()
+    try:
+        res = prob.MODELS[name](scene, progress)
+    except InputError:
+        raise
+    except ConvergenceError as err:
+        return ModelResult(name, "failed", time.perf_counter() - t0, error=str(err))
+    except (ArithmeticError, ValueError, RuntimeError, MemoryError, KeyError) as err:
+        return ModelResult(name, "failed", time.perf_counter() - t0, error=f"{type(err).__name__}: {err}")
+    res.time_s = time.perf_counter() - t0
+    issues = physical_violations(res, prob.load_of(scene))
+    if issues:
+        res.status, res.error = "failed", "; ".join(issues)
+    elif k is not None:
+        cache.store(k, res)
+    return res
+
+
+def run(scene: Scene | str | Path, overrides: dict[str, Any] | None = None, models: list[str] | None = None,
+        use_cache: bool = True, rebuild: bool = False, progress: Progress | None = None) -> RunResult:
+    """Run ``models`` (default: the scene's ``models.run``) and compare them with the scene's references."""
+    sc = resolve_scene(scene, overrides)
+    prob = problem(sc.kind)
+    names = list(models) if models else list(sc["models.run"])
+    for n in names:
+        if n not in prob.MODELS:
+            raise InputError("--models", f"{n!r} is not a model of {sc.kind}; allowed: {', '.join(prob.MODELS)}")
+    results = {}
+    for n in names:
+        if progress:
+            progress(f"{sc.name}: {n}")
+        results[n] = run_model(sc, n, use_cache, rebuild, progress)
+    comparisons = compare(sc, results, prob.profile_scale(sc))
+    return RunResult(sc.name, dict(sc.params), results, comparisons, sc.kind, sc.description)

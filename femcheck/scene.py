@@ -1,0 +1,209 @@
+"""Scenes: TOML files -> validated :class:`Scene` with typed, range-checked ``--set`` overrides.
+
+A scene file has top-level ``name``, ``kind`` (the problem family, see :mod:`femcheck.problems`),
+``description`` and ``tags`` (suites it belongs to), and sections whose keys are addressed with dots:
+``geometry.radius``, ``materials.block.E``, ``tolerances.bem.p_max``. The problem kind declares which keys
+exist, their type, unit and allowed range; anything else is refused with one line naming the key.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from fnmatch import fnmatchcase
+from pathlib import Path
+from typing import Any
+
+from .errors import InputError
+from .materials import Elastic
+
+
+@dataclass(frozen=True)
+class Key:
+    """Schema of one scene key: ``kind`` is float | int | bool | str | list; ``lo``/``hi`` bound numbers
+    (open bounds unless ``lo_closed``/``hi_closed``); ``choices`` restrict strings or list items."""
+
+    kind: str
+    unit: str = "-"
+    doc: str = ""
+    lo: float | None = None
+    hi: float | None = None
+    lo_closed: bool = False
+    hi_closed: bool = False
+    choices: tuple[str, ...] | None = None
+
+    def allowed(self) -> str:
+        if self.choices is not None:
+            return "one of " + ", ".join(self.choices) if self.kind != "list" else \
+                "a comma-separated list of " + ", ".join(self.choices)
+        if self.kind == "bool":
+            return "true or false"
+        if self.lo is None and self.hi is None:
+            return f"any {self.kind}"
+        left = ("[" if self.lo_closed else "(") + ("-inf" if self.lo is None else f"{self.lo:g}")
+        right = ("inf" if self.hi is None else f"{self.hi:g}") + ("]" if self.hi_closed else ")")
+        return f"{left}, {right}" + ("" if self.unit == "-" else f" {self.unit}")
+
+    def coerce(self, name: str, value: Any) -> Any:
+        """Convert (strings from --set included) and range-check; raise InputError naming ``name``."""
+        bad = InputError(name, f"{value} is not allowed; allowed: {self.allowed()}")
+        if self.kind == "bool":
+            if isinstance(value, bool):
+                return value
+            if isinstance(value, str) and value.lower() in ("true", "false", "1", "0", "yes", "no"):
+                return value.lower() in ("true", "1", "yes")
+            raise bad
+        if self.kind in ("float", "int"):
+            if isinstance(value, bool):
+                raise bad
+            try:
+                v = float(value) if self.kind == "float" else int(value)
+            except (TypeError, ValueError):
+                raise bad from None
+            if self.kind == "int" and isinstance(value, float) and not value.is_integer():
+                raise bad
+            if not math.isfinite(v):
+                raise bad
+            if self.lo is not None and (v < self.lo or (v == self.lo and not self.lo_closed)):
+                raise bad
+            if self.hi is not None and (v > self.hi or (v == self.hi and not self.hi_closed)):
+                raise bad
+            return v
+        if self.kind == "str":
+            if not isinstance(value, str) or (self.choices and value not in self.choices):
+                raise bad
+            return value
+        if self.kind == "list":
+            items = [s.strip() for s in value.split(",")] if isinstance(value, str) else value
+            if not isinstance(items, list) or not items or not all(isinstance(i, str) and i for i in items):
+                raise bad
+            if self.choices and any(i not in self.choices for i in items):
+                unknown = next(i for i in items if i not in self.choices)
+                raise InputError(name, f"{unknown!r} is not allowed; allowed: {self.allowed()}")
+            return items
+        raise TypeError(f"unknown key kind {self.kind}")
+
+
+# Keys every problem kind shares. Materials: E > 0, -1 < nu < 0.5 (thermodynamic bounds; 0.5 itself is
+# refused because the plane-strain stiffness and the FE Lame constant lambda are then infinite).
+def material_keys(body: str) -> dict[str, Key]:
+    return {
+        f"materials.{body}.E": Key("float", "Pa", f"Young's modulus of the {body}", lo=0.0),
+        f"materials.{body}.nu": Key("float", "-", f"Poisson's ratio of the {body}", lo=-1.0, hi=0.5),
+        f"materials.{body}.rigid": Key("bool", "-", f"treat the {body} as rigid (E, nu ignored)"),
+    }
+
+
+def tolerance_key(doc: str) -> Key:
+    return Key("float", "-", doc, lo=0.0, hi=1.0, hi_closed=True)
+
+
+@dataclass
+class Scene:
+    """A validated scene: flat ``params`` dict of dotted keys -> values, plus its schema."""
+
+    name: str
+    kind: str
+    description: str
+    tags: list[str]
+    params: dict[str, Any]
+    schema: dict[str, Key] = field(repr=False)
+    source: str = ""
+
+    def __getitem__(self, key: str) -> Any:
+        return self.params[key]
+
+    def get(self, key: str, default: Any = None) -> Any:
+        return self.params.get(key, default)
+
+    def section(self, prefix: str) -> dict[str, Any]:
+        """Keys under ``prefix.`` with the prefix stripped."""
+        n = len(prefix) + 1
+        return {k[n:]: v for k, v in self.params.items() if k.startswith(prefix + ".")}
+
+    def material(self, body: str) -> Elastic:
+        rigid = bool(self.get(f"materials.{body}.rigid", False))
+        return Elastic(float(self.get(f"materials.{body}.E", 1.0)), float(self.get(f"materials.{body}.nu", 0.0)),
+                       rigid)
+
+    def with_overrides(self, overrides: dict[str, Any]) -> "Scene":
+        return build_scene(self.name, self.kind, self.description, self.tags,
+                           {**self.params, **overrides}, self.source)
+
+
+def _flatten(d: dict, prefix: str = "") -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, dict):
+            out.update(_flatten(v, key + "."))
+        else:
+            out[key] = v
+    return out
+
+
+def _lookup(schema: dict[str, Key], key: str) -> Key | None:
+    if key in schema:
+        return schema[key]
+    for pattern, spec in schema.items():
+        if "*" in pattern and fnmatchcase(key, pattern):
+            return spec
+    return None
+
+
+def build_scene(name: str, kind: str, description: str, tags: list[str], raw: dict[str, Any],
+                source: str = "") -> Scene:
+    """Type- and range-check every key against the kind's schema, then the kind's cross-key checks."""
+    from .problems import problem
+
+    prob = problem(kind)
+    schema = prob.SCHEMA
+    params: dict[str, Any] = {}
+    for key, value in raw.items():
+        spec = _lookup(schema, key)
+        if spec is None:
+            raise InputError(key, f"unknown key for a {kind} scene; see `femcheck show {name}` for the keys")
+        params[key] = spec.coerce(key, value)
+    for key, default in prob.DEFAULTS.items():
+        params.setdefault(key, default)
+    missing = [k for k in prob.REQUIRED if k not in params]
+    if missing:
+        raise InputError(missing[0], "required key is missing")
+    prob.validate(params)
+    return Scene(name, kind, description, list(tags), params, schema, source)
+
+
+def parse_overrides(items: list[str]) -> dict[str, str]:
+    """``["load.per_length=2e6", ...]`` -> dict; the values stay strings and are converted by the schema."""
+    out: dict[str, str] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            raise InputError("--set", f"{item!r} is not KEY=VALUE (e.g. --set load.per_length=2e6)")
+        out[key.strip()] = value.strip()
+    return out
+
+
+def builtin_scene_files() -> dict[str, Path]:
+    root = Path(__file__).parent / "scenes"
+    return {p.stem: p for p in sorted(root.glob("*.toml"))}
+
+
+def load_scene(scene: str | Path, overrides: dict[str, Any] | None = None) -> Scene:
+    """Load a built-in scene by name, or a TOML file by path, and apply ``overrides`` (dotted keys)."""
+    files = builtin_scene_files()
+    path = files.get(str(scene)) or Path(scene)
+    if not path.is_file():
+        raise InputError("scene", f"{scene!r} is neither a built-in scene ({', '.join(sorted(files))}) "
+                                  "nor a TOML file")
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as err:
+        raise InputError("scene", f"{path}: invalid TOML ({err})") from None
+    meta = {k: data.pop(k) for k in ("name", "kind", "description", "tags") if k in data}
+    if "kind" not in meta:
+        raise InputError("kind", f"{path}: a scene needs a top-level kind")
+    raw = _flatten(data)
+    raw.update(overrides or {})
+    return build_scene(str(meta.get("name", path.stem)), str(meta["kind"]), str(meta.get("description", "")),
+                       list(meta.get("tags", [])), raw, str(path))
