@@ -31,6 +31,7 @@ class FEMLineSettings:
     block_width: float = 40.0
     block_depth: float = 20.0
     order: int = 2
+    formulation: str = "auto"
     method: str = "active_set"
     penalty_factor: float = 1.0e3
     tol: float = 1e-9
@@ -53,14 +54,15 @@ class FEMLevel:
     penetration: float
     time_s: float
     meshes: dict[str, TriMesh] = field(default_factory=dict)
+    formulations: dict[str, str] = field(default_factory=dict)
 
 
 def _tributary_weights(body, dofs: np.ndarray, where) -> np.ndarray:
     """w_i = int phi_i ds over the contact line (m): the length each contact node carries (lumped)."""
     from skfem import FacetBasis, LinearForm, asm
 
-    fb = FacetBasis(body.basis.mesh, body.basis.elem, facets=body.basis.mesh.facets_satisfying(where),
-                    intorder=4)
+    fb = FacetBasis(body.basis.mesh, body.basis.elem,
+                    facets=body.basis.mesh.facets_satisfying(where, boundaries_only=True), intorder=4)
     w = asm(LinearForm(lambda v, _: v[1]), fb)   # y-component of the vector test function
     return w[dofs]
 
@@ -77,9 +79,10 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
 
     bmesh = block_half(s.block_width * a_ref, s.block_depth * a_ref,
                        MeshSpec(h, x_c, grading, max(h, 2.0 * a_ref)))
-    blk = make_body(bmesh, block, s.order)
+    blk = make_body(bmesh, block, s.order, s.formulation)
     on_contact_b = lambda X: (np.abs(X[1]) < tiny) & (X[0] < x_c + tiny)
-    fixed_b = np.concatenate([blk.basis.get_dofs(lambda X: np.abs(X[1] + s.block_depth * a_ref) < tiny).all(),
+    bottom = lambda X: np.abs(X[1] + s.block_depth * a_ref) < tiny
+    fixed_b = np.concatenate([boundary_dofs(blk.basis, bottom, 0), boundary_dofs(blk.basis, bottom, 1),
                               boundary_dofs(blk.basis, lambda X: np.abs(X[0]) < tiny, 0)])
     cb = CondensedBody(blk, fixed_b)
     dofs_b = boundary_dofs(blk.basis, on_contact_b, 1)
@@ -87,19 +90,20 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
     W = cb.compliance(dofs_b)
     g0 = radius - np.sqrt(radius**2 - x**2)      # exact circle, also at P2 mid-edge nodes
     meshes = {"block": bmesh}
+    formulations = {"block": blk.formulation}
     n_dofs, n_el = blk.n_dofs, bmesh.triangles.shape[1]
 
     if cylinder.rigid:
         c = -np.ones_like(x)
     else:
         cmesh = cylinder_half(radius, MeshSpec(h, x_c, grading, max(h, radius / 5.0)))
-        cyl = make_body(cmesh, cylinder, s.order)
+        cyl = make_body(cmesh, cylinder, s.order, s.formulation)
         top = boundary_dofs(cyl.basis, lambda X: np.abs(X[1] - radius) < 1e-9 * radius, 1)
         fixed_c = np.unique(np.concatenate([top, boundary_dofs(cyl.basis, lambda X: np.abs(X[0]) < tiny, 0)]))
         cc = CondensedBody(cyl, fixed_c)
-        dofs_c = boundary_dofs(cyl.basis, lambda X: (X[0] < x_c + tiny) & (X[1] < radius * 0.5)
-                               & (np.abs(X[1] - (radius - np.sqrt(np.clip(radius**2 - X[0]**2, 0, None))))
-                                  < 1e-3 * h), 1)
+        # Contact facets: the polyline x in (0, x_c] on the lower surface (facet midpoints; excludes the
+        # symmetry line x = 0 and the loaded flat y = R). P2 mid-side nodes sit on the chords.
+        dofs_c = boundary_dofs(cyl.basis, lambda X: (X[0] > tiny) & (X[0] < x_c + tiny) & (X[1] < 0.5 * radius), 1)
         xc = cyl.basis.doflocs[0, dofs_c]
         if xc.shape != x.shape or np.abs(xc - x).max() > 1e-6 * h:
             raise RuntimeError("contact nodes of cylinder and block do not match")
@@ -108,6 +112,7 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
         unit[top] = -1.0                        # approach delta = 1: the loaded flat moves down by 1 m
         c = cc.response(unit, dofs_c)
         meshes["cylinder"] = cmesh
+        formulations["cylinder"] = cyl.formulation
         n_dofs += cyl.n_dofs
         n_el += cmesh.triangles.shape[1]
 
@@ -127,7 +132,7 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
         raise ConvergenceError("FEM line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
     return FEMLevel(h, x, p, float(p.max()), contact_edge(x, p), 2.0 * float(sol.lam.sum()), n_dofs, n_el,
-                    sol.iterations, sol.residual, sol.penetration, time.perf_counter() - t0, meshes)
+                    sol.iterations, sol.residual, sol.penetration, time.perf_counter() - t0, meshes, formulations)
 
 
 def extrapolate(levels: list[FEMLevel], quantity: str) -> Extrapolation:

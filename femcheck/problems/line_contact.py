@@ -51,6 +51,8 @@ SCHEMA: dict[str, Key] = {
                                     hi_closed=True),
     "numerics.fem_order": Key("int", "-", "element order (P1 or P2)", lo=1, hi=2, lo_closed=True,
                               hi_closed=True),
+    "numerics.fem_formulation": Key("str", "-", "auto: mixed u-p (Taylor-Hood) above nu = 0.45",
+                                    choices=("auto", "displacement", "mixed")),
     "numerics.fem_method": Key("str", "-", "contact algorithm", choices=("active_set", "penalty")),
     "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E* / h)", lo=1.0, hi=1e9, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
@@ -72,6 +74,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_block_width": _FEM.block_width,
     "numerics.fem_block_depth": _FEM.block_depth,
     "numerics.fem_order": _FEM.order,
+    "numerics.fem_formulation": _FEM.formulation,
     "numerics.fem_method": _FEM.method,
     "numerics.fem_penalty": _FEM.penalty_factor,
 }
@@ -151,7 +154,8 @@ def fem_settings(scene: Scene) -> FEMLineSettings:
     n = scene.section("numerics")
     return FEMLineSettings(levels=n["fem_levels"], h_contact=n["fem_h_contact"], grading=n["fem_grading"],
                            contact_zone=n["fem_contact_zone"], block_width=n["fem_block_width"],
-                           block_depth=n["fem_block_depth"], order=n["fem_order"], method=n["fem_method"],
+                           block_depth=n["fem_block_depth"], order=n["fem_order"],
+                           formulation=n["fem_formulation"], method=n["fem_method"],
                            penalty_factor=n["fem_penalty"])
 
 
@@ -176,7 +180,7 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     fine = levels[-1]
     finest = {"p_max": fine.p_max, "half_width": fine.half_width}
     stats: dict[str, Any] = {
-        "method": s.method, "element_order": s.order, "finest": finest,
+        "method": s.method, "element_order": s.order, "formulation": fine.formulations, "finest": finest,
         "levels": [{"h": lv.h, "h_over_a": lv.h / h.half_width, "n_dofs": lv.n_dofs,
                     "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
                     "iterations": lv.iterations, "residual": lv.residual, "penetration": lv.penetration,
@@ -208,3 +212,53 @@ def load_of(scene: Scene) -> float:
 def profile_scale(scene: Scene) -> float:
     """Length (m) that sets the common grid of pressure-profile comparisons."""
     return _hertz(scene.params).half_width
+
+
+def max_load(params: dict[str, Any]) -> float:
+    """Largest admissible load per length (N/m): the one giving a/R = MAX_A_OVER_R."""
+    h = _hertz(params)
+    return params["load.per_length"] * (MAX_A_OVER_R * params["geometry.radius"] / h.half_width) ** 2
+
+
+def stress_cases(scene: Scene) -> list:
+    """Extremes: nu from 0 to 0.4999 (both bodies), E_cylinder/E_block from 1e-2 to 1e2, load over six decades
+    up to the largest admissible one, a rigid cylinder, and the corners nu = 0.4999 x E ratio 1e-2 / 1e2.
+    When the moduli change, the load is scaled with E* so that a/R stays that of the scene (a softer pair at
+    the same load would only leave the admissible range, which is tested by the load sweep)."""
+    from ..stability import StressCase
+
+    e_block = scene["materials.block.E"]
+    e_star0 = _hertz(scene.params).modulus
+
+    def same_size(over: dict[str, Any]) -> dict[str, Any]:
+        e_star = _hertz({**scene.params, **over}).modulus
+        return {**over, "load.per_length": scene["load.per_length"] * e_star / e_star0}
+
+    cases = []
+    for nu in (0.0, 0.25, 0.45, 0.49, 0.499, 0.4999):
+        cases.append(StressCase(f"nu={nu:g}", {"materials.cylinder.nu": nu, "materials.block.nu": nu}))
+    for ratio in (1e-2, 1e-1, 1e1, 1e2):
+        cases.append(StressCase(f"E_cyl/E_block={ratio:g}", same_size({"materials.cylinder.E": ratio * e_block})))
+    w_max = max_load(scene.params)
+    for k in range(6, -1, -1):
+        w = w_max * 10.0**-k
+        cases.append(StressCase(f"load={w:.3g} N/m", {"load.per_length": w}))
+    cases.append(StressCase("rigid cylinder", {"materials.cylinder.rigid": True}))
+    cases.append(StressCase("rigid cylinder, nu=0.4999", {"materials.cylinder.rigid": True,
+                                                          "materials.block.nu": 0.4999}))
+    for ratio in (1e-2, 1e2):
+        cases.append(StressCase(f"nu=0.4999, E_cyl/E_block={ratio:g}",
+                                same_size({"materials.cylinder.nu": 0.4999, "materials.block.nu": 0.4999,
+                                           "materials.cylinder.E": ratio * e_block})))
+    return cases
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    """Discretisation sweeps for ``femcheck bench``: BEM strip count; FEM single mesh levels refined uniformly
+    (element size on the contact and grading halved together)."""
+    h0, g0 = scene["numerics.fem_h_contact"], scene["numerics.fem_grading"]
+    return {
+        "bem": [{"numerics.bem_elements": n} for n in (32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384)],
+        "fem": [{"numerics.fem_levels": 1, "numerics.fem_h_contact": h0 / 2**k, "numerics.fem_grading": g0 / 2**k}
+                for k in range(5)],
+    }

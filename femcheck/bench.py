@@ -1,0 +1,71 @@
+"""Time-vs-error sweeps: each model over its discretisation, errors against the analytic solution.
+
+Timings are wall-clock of the model alone (no cache), the minimum over repeats for runs shorter than 0.5 s
+(interference from the machine only ever adds time), single process so runs do not compete.
+"""
+from __future__ import annotations
+
+import time
+from typing import Any, Callable
+
+import numpy as np
+
+from .compare import profile_errors
+from .problems import problem
+from .runner import run_model
+from .scene import Scene
+
+QUANTITIES = ("p_max", "half_width")
+
+
+def _timed(scene: Scene, model: str) -> tuple[Any, float, int]:
+    best, repeats, res = np.inf, 0, None
+    start = time.perf_counter()
+    while True:
+        res = run_model(scene, model, use_cache=False)
+        best = min(best, res.time_s)
+        repeats += 1
+        if res.status != "ok" or time.perf_counter() - start > 0.5 or repeats >= 20:
+            return res, best, repeats
+
+
+def bench(scene: Scene, models: list[str] | None = None,
+          on_step: Callable[[str], None] | None = None) -> list[dict[str, Any]]:
+    """One row per (model, discretisation): time_s, errors err_<q> vs analytic, and the model's stats."""
+    prob = problem(scene.kind)
+    ref = run_model(scene, "analytic", use_cache=False)
+    scale = prob.profile_scale(scene)
+    rows = []
+    for model, sweep in prob.bench_sweeps(scene).items():
+        if models and model not in models:
+            continue
+        for overrides in sweep:
+            sc = scene.with_overrides(overrides)
+            if on_step:
+                on_step(f"{model} {overrides}")
+            res, t, repeats = _timed(sc, model)
+            row: dict[str, Any] = {"model": model, "setting": overrides, "status": res.status,
+                                   "time_s": t, "repeats": repeats}
+            if res.status == "ok":
+                for q in QUANTITIES:
+                    row[f"err_{q}"] = abs(res.quantities[q] / ref.quantities[q] - 1.0)
+                errs = profile_errors(res.fields["x"], res.fields["pressure"], ref.fields["x"],
+                                      ref.fields["pressure"], scale)
+                row["err_pressure_profile_l2"] = errs["pressure_profile_l2"]
+                st = res.stats
+                row["size"] = st.get("n_elements") or (st["levels"][-1]["n_dofs"] if "levels" in st else None)
+                row["iterations"] = st.get("iterations") or (st["levels"][-1]["iterations"] if "levels" in st
+                                                             else None)
+            else:
+                row["error"] = res.error
+            rows.append(row)
+    return rows
+
+
+def scaling_exponent(rows: list[dict[str, Any]], model: str) -> float | None:
+    """Least-squares slope of log(time) against log(size) for one model (e.g. ~1 for N log N)."""
+    pts = [(r["size"], r["time_s"]) for r in rows if r["model"] == model and r.get("size")]
+    if len(pts) < 3:
+        return None
+    n, t = np.log(np.array(pts, dtype=float)).T
+    return float(np.polyfit(n, t, 1)[0])

@@ -1,0 +1,60 @@
+"""Stress tests of numerical stability: run a scene over parameter extremes and list every case that failed
+to converge, produced non-finite or non-physical output (negative pressure, load imbalance > 1e-6), or left
+the scene's tolerance against the analytic solution. Nothing is dropped silently."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from .errors import InputError
+from .executor import map_cases
+from .problems import problem
+from .runner import run
+from .scene import Scene
+
+
+@dataclass
+class StressCase:
+    label: str
+    overrides: dict[str, Any]
+    status: str = "pending"          # ok | failed | refused | inaccurate
+    models: dict[str, dict] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"label": self.label, "overrides": self.overrides, "status": self.status,
+                "problems": self.problems, "models": self.models}
+
+
+def _run_case(args: tuple[Scene, StressCase]) -> StressCase:
+    scene, case = args
+    try:
+        res = run(scene, case.overrides, use_cache=False)
+    except InputError as err:
+        case.status, case.problems = "refused", [str(err)]
+        return case
+    worst = "ok"
+    for name, m in res.models.items():
+        entry: dict[str, Any] = {"status": m.status, "time_s": m.time_s}
+        for key in ("iterations", "residual"):
+            if key in m.stats:
+                entry[key] = m.stats[key]
+        if m.status != "ok":
+            case.problems.append(f"{name}: {m.error}")
+            worst = "failed"
+        case.models[name] = entry
+    for c in res.comparisons:
+        if c.reference == "analytic" and c.quantity in ("p_max", "half_width"):
+            case.models.setdefault(c.model, {})[f"err_{c.quantity}"] = c.rel_error
+            if c.passed is False:
+                case.problems.append(f"{c.model}: {c.quantity} off analytic by {c.rel_error:.2%} "
+                                     f"(tolerance {c.tolerance:.2%})")
+                worst = worst if worst == "failed" else "inaccurate"
+    case.status = worst
+    return case
+
+
+def stress(scene: Scene, workers: int | None = None, on_done=None) -> list[StressCase]:
+    """Run every case of the kind's ``stress_cases(scene)`` (in worker processes) and classify it."""
+    cases = problem(scene.kind).stress_cases(scene)
+    return map_cases(_run_case, [(scene, c) for c in cases], workers, on_done)
