@@ -22,6 +22,8 @@ from .errors import InputError
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
                   help="Cross-check fast contact models against FEM references.")
 out_console = Console()
+if not out_console.is_terminal:       # piped or captured: do not wrap tables at 80 columns
+    out_console = Console(width=220)
 err_console = Console(stderr=True)
 
 
