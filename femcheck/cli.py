@@ -193,7 +193,7 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         (tmp / "bench.json").write_text(json.dumps({"scene": sc.name, "rows": rows, "time_vs_size_exponent": exps},
                                                    indent=1))
         cols = ["model", "setting", "size", "iterations", "time_s", "err_p_max", "err_half_width",
-                "err_pressure_profile_l2", "status"]
+                "err_pressure_profile_l2", "err_self_p_max", "err_self_half_width", "status"]
         lines = [",".join(cols)] + [",".join(json.dumps(r.get(c, "")).replace(",", ";") for c in cols)
                                     for r in rows]
         (tmp / "bench.csv").write_text("\n".join(lines) + "\n")

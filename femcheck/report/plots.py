@@ -109,17 +109,23 @@ def stress_field(run: RunResult, path: Path) -> str | None:
 
 
 def time_error(rows: list[dict], path: Path, title: str) -> str:
-    """Log-log run time against error, one line per model and quantity (bench)."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for model in sorted({r["model"] for r in rows}):
-        for q, mk in (("p_max", "o"), ("half_width", "s"), ("pressure_profile_l2", "^")):
-            pts = [(r["time_s"], r[f"err_{q}"]) for r in rows if r["model"] == model and r.get(f"err_{q}")]
-            if pts:
-                t, e = zip(*pts)
-                ax.loglog(t, e, marker=mk, label=f"{model}: {q}")
-    ax.set_xlabel("run time (s)")
-    ax.set_ylabel("relative error vs analytic")
-    ax.set_title(title)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    """Log-log run time against error, one line per model and quantity (bench): left against the analytic
+    solution, right against the model's own finest setting (discretisation error alone)."""
+    fig, axes = plt.subplots(1, 2, figsize=(11.5, 4.4), sharey=True)
+    panels = ((axes[0], "err_", ("p_max", "half_width", "pressure_profile_l2"), "error vs analytic"),
+              (axes[1], "err_self_", ("p_max", "half_width"), "change vs own finest setting"))
+    for ax, prefix, quantities, label in panels:
+        for model in sorted({r["model"] for r in rows}):
+            for q in quantities:
+                mk = {"p_max": "o", "half_width": "s"}.get(q, "^")
+                pts = [(r["time_s"], r[prefix + q]) for r in rows if r["model"] == model and r.get(prefix + q)]
+                if pts:
+                    t, e = zip(*pts)
+                    ax.loglog(t, e, marker=mk, label=f"{model}: {q}")
+        ax.set_xlabel("run time (s)")
+        ax.set_title(label)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    axes[0].set_ylabel("relative error")
+    fig.suptitle(title)
     return _save(fig, path)
