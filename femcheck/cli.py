@@ -99,10 +99,10 @@ def show(scene: str = typer.Argument(..., help="scene name or TOML path"),
     t = Table()
     for col in ("key", "value", "unit", "allowed", "meaning"):
         t.add_column(col)
-    from .scene import _lookup
+    from .scene import lookup_key
 
     for k, v in sc.params.items():
-        spec = _lookup(sc.schema, k)
+        spec = lookup_key(sc.schema, k)
         t.add_row(k, ", ".join(v) if isinstance(v, list) else f"{v:g}" if isinstance(v, float) else str(v),
                   spec.unit, spec.allowed(), spec.doc)
     out_console.print(t)
@@ -112,7 +112,7 @@ def show(scene: str = typer.Argument(..., help="scene name or TOML path"),
 def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
             set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override (repeatable)"),
             models: Optional[str] = typer.Option(None, "--models", help="comma-separated models"),
-            out: Optional[Path] = typer.Option(None, "--out", help="write result.json and a report here"),
+            out: Optional[Path] = typer.Option(None, "--out", help="write the report (index.html, summary.json, figures) here"),
             json_out: bool = typer.Option(False, "--json", help="print one JSON object"),
             rebuild: bool = typer.Option(False, "--rebuild", help="ignore cached FEM results")) -> None:
     """Run one scene and compare its models."""

@@ -142,7 +142,7 @@ def _flatten(d: dict, prefix: str = "") -> dict[str, Any]:
     return out
 
 
-def _lookup(schema: dict[str, Key], key: str) -> Key | None:
+def lookup_key(schema: dict[str, Key], key: str) -> Key | None:
     if key in schema:
         return schema[key]
     for pattern, spec in schema.items():
@@ -160,7 +160,7 @@ def build_scene(name: str, kind: str, description: str, tags: list[str], raw: di
     schema = prob.SCHEMA
     params: dict[str, Any] = {}
     for key, value in raw.items():
-        spec = _lookup(schema, key)
+        spec = lookup_key(schema, key)
         if spec is None:
             raise InputError(key, f"unknown key for a {kind} scene; see `femcheck show {name}` for the keys")
         params[key] = spec.coerce(key, value)

@@ -89,6 +89,17 @@ def _extract(model, surface: int) -> TriMesh:
     return TriMesh(pts, inverse.reshape(tri.shape).T.copy())
 
 
+def _mesh_surface(model, contact: list[int], rest: list[int], spec: MeshSpec) -> TriMesh:
+    """Close the boundary (contact polyline + ``rest``), keep one element per contact segment so the nodes
+    stay at x_i, grade sizes from the contact, and mesh."""
+    surf = model.geo.addPlaneSurface([model.geo.addCurveLoop(contact + rest)])
+    model.geo.synchronize()
+    for ln in contact:
+        model.mesh.setTransfiniteCurve(ln, 2)
+    _size_field(model, contact, spec)
+    return _extract(model, surf)
+
+
 def contact_abscissae(spec: MeshSpec) -> np.ndarray:
     """Node abscissae x_i (m) of the candidate contact zone: uniform spacing <= h_contact from 0 to x_c."""
     n = max(2, int(np.ceil(spec.x_contact / spec.h_contact)))
@@ -106,13 +117,7 @@ def block_half(width: float, depth: float, spec: MeshSpec) -> TriMesh:
         p_bl = geo.addPoint(0.0, -depth, 0.0)
         rest = [geo.addLine(pts[-1], p_top), geo.addLine(p_top, p_br), geo.addLine(p_br, p_bl),
                 geo.addLine(p_bl, pts[0])]
-        loop = geo.addCurveLoop(lines + rest)
-        surf = geo.addPlaneSurface([loop])
-        geo.synchronize()
-        for ln in lines:
-            model.mesh.setTransfiniteCurve(ln, 2)
-        _size_field(model, lines, spec)
-        return _extract(model, surf)
+        return _mesh_surface(model, lines, rest, spec)
 
 
 def cylinder_half(radius: float, spec: MeshSpec) -> TriMesh:
@@ -130,10 +135,4 @@ def cylinder_half(radius: float, spec: MeshSpec) -> TriMesh:
         p_right = geo.addPoint(radius, radius, 0.0)
         rest = [geo.addCircleArc(pts[-1], centre, p_right), geo.addLine(p_right, centre),
                 geo.addLine(centre, pts[0])]
-        loop = geo.addCurveLoop(lines + rest)
-        surf = geo.addPlaneSurface([loop])
-        geo.synchronize()
-        for ln in lines:
-            model.mesh.setTransfiniteCurve(ln, 2)
-        _size_field(model, lines, spec)
-        return _extract(model, surf)
+        return _mesh_surface(model, lines, rest, spec)
