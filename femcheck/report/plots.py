@@ -78,7 +78,7 @@ def fem_convergence(run: RunResult, path: Path) -> str | None:
         vals = np.array([lv[q] for lv in levels])
         rich = m.stats["richardson"][q]
         if rich["order"] is not None:      # no asymptotic order: there is no extrapolated value to show
-            ax.loglog(h[:-1], np.abs(vals[:-1] / rich["value"] - 1), marker="o", color=colour,
+            ax.loglog(h, np.abs(vals / rich["value"] - 1), marker="o", color=colour,
                       label=f"{q} vs extrapolated (order {rich['order']:.2f})")
         if ref is not None and ref.status == "ok" and q in ref.quantities:
             ax.loglog(h, np.maximum(np.abs(vals / ref.quantities[q] - 1), 1e-9), marker="s", ls="--",
