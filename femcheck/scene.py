@@ -127,8 +127,10 @@ class Scene:
                        rigid)
 
     def with_overrides(self, overrides: dict[str, Any]) -> "Scene":
+        """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry)."""
+        merged = {**self.params, **overrides}
         return build_scene(self.name, self.kind, self.description, self.tags,
-                           {**self.params, **overrides}, self.source)
+                           {k: v for k, v in merged.items() if v is not None}, self.source)
 
 
 def _flatten(d: dict, prefix: str = "") -> dict[str, Any]:

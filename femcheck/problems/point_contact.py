@@ -1,0 +1,182 @@
+"""3D point / elliptical contact of two bodies with principal relative radii Rx, Ry (hertz-point, hertz-elliptic).
+
+x is the rolling direction. Models: ``analytic`` (exact elliptic Hertz), ``bem`` (half-space boundary
+integral: Love rectangles, DC-FFT, Polonsky-Keer CG, coarse-to-fine warm start).
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from ..analytic import hertz
+from ..bem import halfspace
+from ..errors import ConvergenceError, InputError
+from ..materials import Elastic, effective_modulus
+from ..qoi import ellipse_fit
+from ..result import ModelResult
+from ..scene import Key, Scene, material_keys, tolerance_key
+
+MODEL_NAMES = ("analytic", "bem")
+MAX_A_OVER_R = 0.1
+
+SCHEMA: dict[str, Key] = {
+    "geometry.radius": Key("float", "m", "sphere radius R (sets Rx = Ry = R)", lo=0.0),
+    "geometry.Rx": Key("float", "m", "relative radius of curvature in the rolling direction x", lo=0.0),
+    "geometry.Ry": Key("float", "m", "relative radius of curvature across, y", lo=0.0),
+    "geometry.profile": Key("str", "-", "gap: Hertz paraboloid, or the exact sphere (radius only)",
+                            choices=("paraboloid", "sphere")),
+    "load.normal": Key("float", "N", "normal load", lo=0.0),
+    **material_keys("body1"),
+    **material_keys("body2"),
+    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
+    "models.references": Key("list", "-", "models every other model is compared against", choices=("analytic",)),
+    "numerics.bem_cells": Key("int", "-", "BEM cells per side (odd: a cell sits on the centre)", lo=9,
+                              hi=4097, lo_closed=True, hi_closed=True),
+    "numerics.bem_domain": Key("float", "a_H", "BEM half-side / Hertz semi-axis (each direction)", lo=1.05,
+                               hi=10.0, hi_closed=True),
+    "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
+    "numerics.bem_warm_levels": Key("int", "-", "coarser grids solved first as a warm start", lo=0, hi=8,
+                                    lo_closed=True, hi_closed=True),
+    "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+}
+DEFAULTS: dict[str, Any] = {
+    "geometry.profile": "paraboloid",
+    "materials.body1.rigid": False,
+    "materials.body2.rigid": False,
+    "models.run": list(MODEL_NAMES),
+    "models.references": ["analytic"],
+    "numerics.bem_cells": 65,
+    "numerics.bem_domain": 1.25,
+    "numerics.bem_tol": 1e-10,
+    "numerics.bem_warm_levels": 0,
+}
+REQUIRED = ("load.normal",)
+DEPENDS: dict[str, dict] = {}
+
+
+def radii(params: dict[str, Any]) -> tuple[float, float]:
+    if "geometry.radius" in params:
+        return params["geometry.radius"], params["geometry.radius"]
+    return params["geometry.Rx"], params["geometry.Ry"]
+
+
+def _material(params: dict[str, Any], body: str) -> Elastic:
+    return Elastic(params.get(f"materials.{body}.E", 1.0), params.get(f"materials.{body}.nu", 0.0),
+                   params[f"materials.{body}.rigid"])
+
+
+def _hertz(params: dict[str, Any]) -> hertz.EllipticContact:
+    rx, ry = radii(params)
+    e_star = effective_modulus(_material(params, "body1"), _material(params, "body2"))
+    return hertz.elliptic_contact(params["load.normal"], rx, ry, e_star)
+
+
+def validate(params: dict[str, Any]) -> None:
+    """Exactly one of radius or (Rx, Ry); elastic bodies need E and nu, one must be elastic; small a/R."""
+    has_r, has_xy = "geometry.radius" in params, ("geometry.Rx" in params, "geometry.Ry" in params)
+    if has_r and any(has_xy):
+        raise InputError("geometry.radius", "give either geometry.radius or geometry.Rx and geometry.Ry")
+    if not has_r and not all(has_xy):
+        missing = "geometry.Rx" if not has_xy[0] else "geometry.Ry"
+        raise InputError(missing, "required (or give geometry.radius for a sphere)")
+    if params["geometry.profile"] == "sphere" and not has_r:
+        raise InputError("geometry.profile", "'sphere' needs geometry.radius; allowed for Rx, Ry: paraboloid")
+    for body in ("body1", "body2"):
+        if not params[f"materials.{body}.rigid"]:
+            for k in (f"materials.{body}.E", f"materials.{body}.nu"):
+                if k not in params:
+                    raise InputError(k, f"required for an elastic {body} (or set materials.{body}.rigid = true)")
+    if params["materials.body1.rigid"] and params["materials.body2.rigid"]:
+        raise InputError("materials.body2.rigid", "both bodies rigid: at least one must be elastic")
+    h = _hertz(params)
+    rx, ry = radii(params)
+    ratio = max(h.semi_axis_x / rx, h.semi_axis_y / ry)
+    if ratio > MAX_A_OVER_R:
+        w_max = params["load.normal"] * (MAX_A_OVER_R / ratio) ** 3       # a ~ W^(1/3)
+        raise InputError("load.normal", f"{params['load.normal']:g} N gives Hertz semi-axes up to a/R = {ratio:.3g} "
+                         f"> {MAX_A_OVER_R} (half-space and small-strain assumptions fail); allowed (0, {w_max:.4g}] N "
+                         "for these radii and materials")
+
+
+def gap_function(params: dict[str, Any]) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+    rx, ry = radii(params)
+    if params["geometry.profile"] == "sphere":
+        return lambda X, Y: rx - np.sqrt(np.clip(rx * rx - X * X - Y * Y, 0.0, None))
+    return lambda X, Y: X * X / (2.0 * rx) + Y * Y / (2.0 * ry)
+
+
+def analytic(scene: Scene, progress=None) -> ModelResult:
+    """Exact elliptic Hertz (Johnson 1985 §4.2; sphere: eq. 4.22)."""
+    h = _hertz(scene.params)
+    x = np.linspace(-1.5 * h.semi_axis_x, 1.5 * h.semi_axis_x, 601)
+    q = {"p_max": h.p_max, "semi_axis_x": h.semi_axis_x, "semi_axis_y": h.semi_axis_y,
+         "contact_area": h.contact_area, "approach": h.approach, "total_force": h.load}
+    stats = {"E_star": h.modulus, "ellipticity": h.semi_axis_y / h.semi_axis_x}
+    return ModelResult("analytic", quantities=q, stats=stats, fields={"x": x, "pressure": h.pressure(x, 0 * x)})
+
+
+def bem(scene: Scene, progress=None) -> ModelResult:
+    """Half-space BEM on an n x n grid over +/- bem_domain Hertz semi-axes (dy/dx follows the ellipse)."""
+    h = _hertz(scene.params)
+    n, dom = scene["numerics.bem_cells"], scene["numerics.bem_domain"]
+    g = halfspace.grid(dom * h.semi_axis_x, dom * h.semi_axis_y, n, n)
+    sol = halfspace.solve(g, gap_function(scene.params), h.modulus, scene["load.normal"], tol=scene["numerics.bem_tol"],
+                          warm_levels=scene["numerics.bem_warm_levels"])
+    r = sol.result
+    c = r.contact
+    if c[0, :].any() or c[-1, :].any() or c[:, 0].any() or c[:, -1].any():
+        raise ConvergenceError("BEM half-space contact", r.iterations, r.residual, scene["numerics.bem_tol"],
+                               "contact reaches the edge of the BEM domain; raise numerics.bem_domain")
+    X, Y = g.mesh()
+    fit = ellipse_fit(X, Y, r.pressure)
+    q = {"p_max": float(r.pressure.max()), "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"],
+         "contact_area": float(np.pi * fit["semi_axis_x"] * fit["semi_axis_y"]), "approach": r.approach,
+         "total_force": r.load}
+    stats = {**sol.stats, "residual": r.residual, "nx": g.nx, "ny": g.ny, "dx": g.dx, "dy": g.dy,
+             "a_over_dx": h.semi_axis_x / g.dx, "contact_cells": int(c.sum()),
+             "ellipse_fit_residual": fit["fit_residual"], "solver": "polonsky_keer", "convolution": "dcfft"}
+    j = g.ny // 2
+    return ModelResult("bem", quantities=q, stats=stats,
+                       fields={"x": g.x, "pressure": r.pressure[:, j], "pressure_map": r.pressure})
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem}
+
+
+def load_of(scene: Scene) -> float:
+    return scene["load.normal"]
+
+
+def profile_scale(scene: Scene) -> float:
+    return _hertz(scene.params).semi_axis_x
+
+
+def stress_cases(scene: Scene) -> list:
+    """Ellipticity up to Ry/Rx = 500, Poisson's ratio to 0.4999, load over six decades, rigid bodies."""
+    from ..stability import StressCase
+
+    rx, ry = radii(scene.params)
+    base = {k: v for k, v in scene.params.items() if k.startswith("geometry.") and k != "geometry.profile"}
+    drop = {k: None for k in base}
+    cases = [StressCase(f"nu={nu:g}", {"materials.body1.nu": nu, "materials.body2.nu": nu})
+             for nu in (0.0, 0.3, 0.49, 0.4999)]
+    for ratio in (1.0, 10.0, 100.0, 500.0):
+        cases.append(StressCase(f"Ry/Rx={ratio:g}", {**drop, "geometry.Rx": rx, "geometry.Ry": rx * ratio,
+                                                     "geometry.profile": "paraboloid"}))
+    w_max = max_load(scene.params)
+    for k in range(6, -1, -1):
+        cases.append(StressCase(f"load={w_max * 10.0**-k:.3g} N", {"load.normal": w_max * 10.0**-k}))
+    cases.append(StressCase("rigid body1", {"materials.body1.rigid": True}))
+    return cases
+
+
+def max_load(params: dict[str, Any]) -> float:
+    h = _hertz(params)
+    rx, ry = radii(params)
+    ratio = max(h.semi_axis_x / rx, h.semi_axis_y / ry)
+    return params["load.normal"] * (MAX_A_OVER_R / ratio) ** 3
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    return {"bem": [{"numerics.bem_cells": n} for n in (17, 25, 33, 49, 65, 97, 129, 193, 257, 385, 513)]}
