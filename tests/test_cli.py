@@ -93,7 +93,8 @@ def test_suite_quick_writes_report(tmp_path):
     assert r.returncode == 0, r.stdout + r.stderr
     html = (out / "index.html").read_text()
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["passed"] is True and summary["scenes"][0]["scene"] == "hertz-line"
+    assert summary["passed"] is True
+    assert {"hertz-line", "hertz-point", "hertz-elliptic"} <= {sc["scene"] for sc in summary["scenes"]}
     pngs = sorted(p.name for p in out.glob("*.png"))
     assert any("pressure" in p for p in pngs) and any("mesh" in p for p in pngs)
     for p in pngs:
