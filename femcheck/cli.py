@@ -177,14 +177,14 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     out = out or Path("reports") / f"bench-{sc.name}"
     with progress_bar(None, f"bench {sc.name}") as advance:
         rows = bench(sc, _models(models), on_step=advance)
+    qnames = list(dict.fromkeys(k[4:] for r in rows for k in r if k.startswith("err_") and
+                                not k.startswith("err_self_")))
     t = Table(title=f"{sc.name}: run time vs error (errors relative to analytic)")
-    for col in ("model", "setting", "size", "iterations", "time (s)", "p_max err", "half_width err",
-                "profile L2 err"):
+    for col in ["model", "setting", "size", "iterations", "time (s)"] + [f"{q} err" for q in qnames]:
         t.add_column(col)
     for r in rows:
         setting = ", ".join(f"{k.split('.')[-1]}={v:g}" for k, v in r["setting"].items())
-        errs = [f"{r[k]:.2e}" if k in r else r.get("error", "-") for k in
-                ("err_p_max", "err_half_width", "err_pressure_profile_l2")]
+        errs = [f"{r['err_' + q]:.2e}" if "err_" + q in r else r.get("error", "-") for q in qnames]
         t.add_row(r["model"], setting, str(r.get("size", "-")), str(r.get("iterations", "-")),
                   f"{r['time_s']:.4f}", *errs)
     out_console.print(t)
@@ -192,8 +192,8 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     with AtomicDir(out) as tmp:
         (tmp / "bench.json").write_text(json.dumps({"scene": sc.name, "rows": rows, "time_vs_size_exponent": exps},
                                                    indent=1))
-        cols = ["model", "setting", "size", "iterations", "time_s", "err_p_max", "err_half_width",
-                "err_pressure_profile_l2", "err_self_p_max", "err_self_half_width", "status"]
+        cols = ["model", "setting", "size", "iterations", "time_s", "status"] + sorted(
+            {k for r in rows for k in r if k.startswith("err_")})
         lines = [",".join(cols)] + [",".join(json.dumps(r.get(c, "")).replace(",", ";") for c in cols)
                                     for r in rows]
         (tmp / "bench.csv").write_text("\n".join(lines) + "\n")

@@ -117,9 +117,11 @@ def time_error(rows: list[dict], path: Path, title: str) -> str:
     """Log-log run time against error, one line per model and quantity (bench): left against the analytic
     solution, right against the model's own finest setting (discretisation error alone)."""
     fig, axes = plt.subplots(1, 2, figsize=(11.5, 4.4), sharey=True)
-    panels = ((axes[0], "err_", ("p_max", "half_width", "pressure_profile_l2"), "error vs analytic"),
-              (axes[1], "err_self_", ("p_max", "half_width"), "change vs own finest setting"))
-    for ax, prefix, quantities, label in panels:
+    names = list(dict.fromkeys(k[4:] for r in rows for k in r
+                               if k.startswith("err_") and not k.startswith("err_self_")))
+    for ax, prefix, label in ((axes[0], "err_", "error vs analytic"),
+                              (axes[1], "err_self_", "change vs own finest setting")):
+        quantities = [q for q in names if prefix == "err_" or not q.startswith("pressure_profile")]
         for model in sorted({r["model"] for r in rows}):
             for q in quantities:
                 mk = {"p_max": "o", "half_width": "s"}.get(q, "^")
