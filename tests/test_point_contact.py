@@ -108,3 +108,27 @@ def test_point_scene_refuses_conflicting_geometry():
         load_scene("hertz-point", {"materials.body1.rigid": True, "materials.body2.rigid": True})
     with pytest.raises(InputError, match="load.normal"):
         load_scene("hertz-point", {"load.normal": 1e9})
+
+
+def test_approach_control_reproduces_load_control():
+    h = point_contact(1000.0, 0.01, 1.154e11)
+    g = grid(1.25 * h.semi_axis_x, 1.25 * h.semi_axis_x, 49, 49)
+    gap = lambda X, Y: (X * X + Y * Y) / 0.02
+    by_load = solve(g, gap, h.modulus, 1000.0).result
+    by_approach = solve(g, gap, h.modulus, None, approach=by_load.approach).result
+    assert by_approach.load == pytest.approx(1000.0, rel=1e-8)
+    np.testing.assert_allclose(by_approach.pressure, by_load.pressure, atol=1e-6 * h.p_max)
+
+
+def test_approach_control_against_hertz_load():
+    # Hertz: delta = a^2 / R carries P; the BEM at a/dx = 26 must carry P within 0.1 %.
+    h = point_contact(1000.0, 0.01, 1.154e11)
+    g = grid(1.25 * h.semi_axis_x, 1.25 * h.semi_axis_x, 65, 65)
+    res = solve(g, lambda X, Y: (X * X + Y * Y) / 0.02, h.modulus, None, approach=h.approach).result
+    assert res.load == pytest.approx(1000.0, rel=1e-3)
+
+
+def test_approach_that_never_touches_is_refused():
+    g = grid(1e-3, 1e-3, 17, 17)
+    with pytest.raises(ValueError, match="no contact"):
+        solve(g, lambda X, Y: 1e-6 + (X * X + Y * Y) / 0.02, 1e11, None, approach=1e-7)

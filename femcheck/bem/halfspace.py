@@ -90,10 +90,11 @@ def fft_time(g: Grid, repeats: int = 5) -> float:
     return best
 
 
-def solve(g: Grid, gap: Gap, modulus: float, load: float, tol: float = 1e-10, warm_levels: int = 0,
-          min_cells: int = 17, max_iter: int = 2000, workers: int = -1) -> HalfSpaceSolution:
-    """Load-controlled contact of two bodies with initial gap ``gap(x, y)`` (m), combined modulus E* (Pa),
-    total load ``load`` (N) on grid ``g``. ``warm_levels`` coarser grids are solved first (stopping before a
+def solve(g: Grid, gap: Gap, modulus: float, load: float | None, tol: float = 1e-10, warm_levels: int = 0,
+          min_cells: int = 17, max_iter: int = 2000, workers: int = -1,
+          approach: float | None = None) -> HalfSpaceSolution:
+    """Contact of two bodies with initial gap ``gap(x, y)`` (m), combined modulus E* (Pa) on grid ``g``, under
+    load control (total ``load``, N) or approach control (``approach`` delta, m; pass load=None). ``warm_levels`` coarser grids are solved first (stopping before a
     grid gets fewer than ``min_cells`` cells per side); ``workers`` threads for the FFTs. Stats: iterations
     and time per level."""
     t0 = time.perf_counter()
@@ -110,7 +111,7 @@ def solve(g: Grid, gap: Gap, modulus: float, load: float, tol: float = 1e-10, wa
             p0 = _prolong(p0, chain[k - 1], gk)
         # Coarse levels only need to be good enough to start the next one.
         res = polonsky_keer(gap(X, Y), op, load, gk.cell_area, p0=p0,
-                            tol=tol if gk is g else max(tol, 1e-6), max_iter=max_iter)
+                            tol=tol if gk is g else max(tol, 1e-6), max_iter=max_iter, approach=approach)
         p0 = res.pressure
         levels.append({"nx": gk.nx, "ny": gk.ny, "iterations": res.iterations, "time_s": time.perf_counter() - tk})
     res.time_s = time.perf_counter() - t0

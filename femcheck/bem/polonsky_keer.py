@@ -42,31 +42,43 @@ def _residual(g: np.ndarray, contact: np.ndarray, scale: float) -> float:
     return float(max(rms, pen) / scale)
 
 
-def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], load: float, cell_area: float,
-                  p0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 1000) -> NormalContactResult:
-    """Load-controlled Polonsky-Keer CG.
+def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], load: float | None,
+                  cell_area: float, p0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 1000,
+                  approach: float | None = None) -> NormalContactResult:
+    """Polonsky-Keer CG under load control (``load`` given) or approach control (``approach`` given).
 
+    Load control: the rigid approach is the mean gap over the contact set and p is rescaled after every step so
+    that A sum(p) = F (Polonsky & Keer 1999, §3). Approach control: delta is fixed, the gap is h + K p - delta
+    without the mean removed and no rescaling (their displacement-driven variant); the load is an output.
     Parameters: ``h`` initial gap (m) on the grid; ``operator`` p -> surface displacement (m); ``load`` total
     force F (N, or N/m in 2D); ``cell_area`` A (m^2, or m in 2D); ``p0`` warm start (Pa); ``tol`` on the
     relative gap residual. Raises :class:`ConvergenceError` if ``max_iter`` is reached.
     """
+    if (load is None) == (approach is None):
+        raise ValueError("give exactly one of load (load control) or approach (approach control)")
     t0 = time.perf_counter()
     h = np.asarray(h, dtype=float)
     scale = float(np.ptp(h)) or 1.0
-    if p0 is None:
+    if p0 is not None and np.clip(p0, 0.0, None).sum() > 0:
+        p = np.clip(np.array(p0, dtype=float), 0.0, None)
+    elif load is not None:
         p = np.where(h <= np.quantile(h, 0.05), 1.0, 0.0)
     else:
-        p = np.clip(np.array(p0, dtype=float), 0.0, None)
-    if p.sum() <= 0:
-        p = np.ones_like(h)
-    p *= load / (cell_area * p.sum())
+        # start from the overlap divided by the self-compliance of a cell: a Winkler-like first guess
+        unit = np.zeros_like(h)
+        unit[np.unravel_index(np.argmin(h), h.shape)] = 1.0
+        p = np.clip(approach - h, 0.0, None) / float(operator(unit).max())
+        if p.sum() <= 0:
+            raise ValueError("the approach does not close the gap anywhere: no contact")
+    if load is not None:
+        p *= load / (cell_area * p.sum())
     t = np.zeros_like(p)
     g_old, restart = 1.0, True
     residual = np.inf
     for it in range(1, max_iter + 1):
         g = h + operator(p)
         contact = p > 0
-        delta = float(g[contact].mean())
+        delta = float(g[contact].mean()) if load is not None else approach
         g -= delta
         residual = _residual(g, contact, scale)
         if residual < tol:
@@ -76,7 +88,8 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         t = np.where(contact, g + (0.0 if restart else G / g_old) * t, 0.0)
         g_old = G
         r = operator(t)
-        r -= r[contact].mean()
+        if load is not None:
+            r -= r[contact].mean()
         denom = float(np.dot(r[contact], t[contact]))
         tau = float(np.dot(g[contact], t[contact])) / denom if denom != 0 else 0.0
         p = p - tau * t
@@ -88,5 +101,6 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         total = p.sum()
         if total <= 0:
             raise ConvergenceError("Polonsky-Keer CG", it, residual, tol, "pressure vanished")
-        p *= load / (cell_area * total)
+        if load is not None:
+            p *= load / (cell_area * total)
     raise ConvergenceError("Polonsky-Keer CG", max_iter, residual, tol)
