@@ -52,11 +52,17 @@ class DCFFT:
             shape[axis] = v.size
             valid = valid & v.reshape(shape)
         k = np.where(valid, np.asarray(kernel(*lags), dtype=float), 0.0)
-        self.spectrum = fft.rfftn(k, s=self.padded, workers=workers)
+        spectrum = fft.rfftn(k, s=self.padded, workers=workers)
+        # An even kernel (Love's rectangle, the strip) has a real spectrum: store it real, halving the work
+        # and memory traffic of the product in every convolution.
+        if np.abs(spectrum.imag).max() <= 1e-13 * np.abs(spectrum.real).max():
+            spectrum = np.ascontiguousarray(spectrum.real)
+        self.spectrum = spectrum
         self._out = tuple(slice(0, n) for n in self.shape)
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
         """Return u = K * p (same shape as p). (Pruned per-axis transforms that skip the zero padding were
         measured too: within this machine's timing noise of the plain rfftn/irfftn, so not kept.)"""
         ph = fft.rfftn(p, s=self.padded, workers=self.workers)
-        return fft.irfftn(ph * self.spectrum, s=self.padded, workers=self.workers)[self._out]
+        ph *= self.spectrum                      # in place: no second padded-size temporary
+        return fft.irfftn(ph, s=self.padded, workers=self.workers, overwrite_x=True)[self._out]

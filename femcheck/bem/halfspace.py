@@ -16,7 +16,7 @@ import numpy as np
 from scipy import fft
 from scipy.interpolate import RegularGridInterpolator
 
-from .convolution import DCFFT
+from .convolution import DCFFT, padded_length
 from .influence import love_rectangle
 from .polonsky_keer import NormalContactResult, polonsky_keer
 
@@ -79,13 +79,15 @@ def _prolong(p: np.ndarray, coarse: Grid, fine: Grid) -> np.ndarray:
     return np.clip(interp((X, Y)), 0.0, None)
 
 
-def fft_time(g: Grid, repeats: int = 5) -> float:
-    """Seconds for one forward + one inverse real FFT of the padded grid (half the cost of a convolution)."""
-    a = np.random.default_rng(0).random((2 * g.nx, 2 * g.ny))
+def fft_time(g: Grid, repeats: int = 5, workers: int = -1) -> float:
+    """Seconds for one forward + one inverse real FFT of the padded grid (= one convolution; a Polonsky-Keer
+    iteration does two, i.e. four FFTs)."""
+    shape = (padded_length(g.nx), padded_length(g.ny))
+    a = np.random.default_rng(0).random(shape)
     best = np.inf
     for _ in range(repeats):
         t0 = time.perf_counter()
-        fft.irfftn(fft.rfftn(a, workers=-1), s=a.shape, workers=-1)
+        fft.irfftn(fft.rfftn(a, workers=workers), s=shape, workers=workers)
         best = min(best, time.perf_counter() - t0)
     return best
 
