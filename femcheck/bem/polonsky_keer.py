@@ -42,6 +42,13 @@ def _residual(g: np.ndarray, contact: np.ndarray, scale: float) -> float:
     return float(max(rms, pen) / scale)
 
 
+def _self_compliance(operator: Callable[[np.ndarray], np.ndarray], h: np.ndarray) -> float:
+    """Displacement of a cell under unit pressure on itself (m/Pa), at the grid centre."""
+    unit = np.zeros_like(h)
+    unit[tuple(n // 2 for n in h.shape)] = 1.0
+    return float(operator(unit).max())
+
+
 def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], load: float | None,
                   cell_area: float, p0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 1000,
                   approach: float | None = None) -> NormalContactResult:
@@ -65,9 +72,7 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         p = np.where(h <= np.quantile(h, 0.05), 1.0, 0.0)
     else:
         # start from the overlap divided by the self-compliance of a cell: a Winkler-like first guess
-        unit = np.zeros_like(h)
-        unit[np.unravel_index(np.argmin(h), h.shape)] = 1.0
-        p = np.clip(approach - h, 0.0, None) / float(operator(unit).max())
+        p = np.clip(approach - h, 0.0, None) / _self_compliance(operator, h)
         if p.sum() <= 0:
             raise ValueError("the approach does not close the gap anywhere: no contact")
     if load is not None:
@@ -97,7 +102,13 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         overlap = (p == 0) & (g < 0)
         restart = bool(overlap.any())
         if restart:
-            p[overlap] -= tau * g[overlap]
+            if tau > 0:
+                p[overlap] -= tau * g[overlap]
+            else:
+                # The gap is uniform over the contact set (e.g. a symmetric start of two cells), so the CG step
+                # vanishes and PK's overlap correction -tau g with it: seed the penetrating cells with the
+                # Winkler estimate -g / k0 instead, k0 being one cell's self-compliance.
+                p[overlap] = -g[overlap] / _self_compliance(operator, h)
         total = p.sum()
         if total <= 0:
             raise ConvergenceError("Polonsky-Keer CG", it, residual, tol, "pressure vanished")
