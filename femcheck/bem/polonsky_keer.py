@@ -36,9 +36,10 @@ class NormalContactResult:
     converged: bool = True
 
 
-def _residual(g: np.ndarray, contact: np.ndarray, scale: float) -> float:
+def _residual(g: np.ndarray, contact: np.ndarray, allowed: np.ndarray, scale: float) -> float:
     rms = np.sqrt(np.mean(g[contact] ** 2)) if contact.any() else np.inf
-    pen = max(0.0, -float(g[~contact].min())) if (~contact).any() else 0.0
+    free = allowed & ~contact
+    pen = max(0.0, -float(g[free].min())) if free.any() else 0.0
     return float(max(rms, pen) / scale)
 
 
@@ -65,14 +66,18 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         raise ValueError("give exactly one of load (load control) or approach (approach control)")
     t0 = time.perf_counter()
     h = np.asarray(h, dtype=float)
-    scale = float(np.ptp(h)) or 1.0
+    allowed = np.isfinite(h)            # +inf gap: no surface there (beyond a roller's end)
+    if not allowed.any():
+        raise ValueError("the gap is infinite everywhere: nothing can touch")
+    h = np.where(allowed, h, 0.0)
+    scale = float(np.ptp(h[allowed])) or 1.0
     if p0 is not None and np.clip(p0, 0.0, None).sum() > 0:
-        p = np.clip(np.array(p0, dtype=float), 0.0, None)
+        p = np.where(allowed, np.clip(np.array(p0, dtype=float), 0.0, None), 0.0)
     elif load is not None:
-        p = np.where(h <= np.quantile(h, 0.05), 1.0, 0.0)
+        p = np.where(allowed & (h <= np.quantile(h[allowed], 0.05)), 1.0, 0.0)
     else:
         # start from the overlap divided by the self-compliance of a cell: a Winkler-like first guess
-        p = np.clip(approach - h, 0.0, None) / _self_compliance(operator, h)
+        p = np.where(allowed, np.clip(approach - h, 0.0, None), 0.0) / _self_compliance(operator, h)
         if p.sum() <= 0:
             raise ValueError("the approach does not close the gap anywhere: no contact")
     if load is not None:
@@ -85,7 +90,7 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         contact = p > 0
         delta = float(g[contact].mean()) if load is not None else approach
         g -= delta
-        residual = _residual(g, contact, scale)
+        residual = _residual(g, contact, allowed, scale)
         if residual < tol:
             return NormalContactResult(p, g, contact, delta, it, residual, float(cell_area * p.sum()),
                                        time.perf_counter() - t0)
@@ -99,7 +104,7 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         tau = float(np.dot(g[contact], t[contact])) / denom if denom != 0 else 0.0
         p = p - tau * t
         p[p < 0] = 0.0
-        overlap = (p == 0) & (g < 0)
+        overlap = allowed & (p == 0) & (g < 0)
         restart = bool(overlap.any())
         if restart:
             if tau > 0:

@@ -10,7 +10,7 @@ from types import ModuleType
 
 from ..errors import InputError
 
-KINDS = {"line_contact": "line_contact", "point_contact": "point_contact"}
+KINDS = {"line_contact": "line_contact", "point_contact": "point_contact", "roller_contact": "roller_contact"}
 
 
 def problem(kind: str) -> ModuleType:

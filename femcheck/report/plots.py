@@ -41,6 +41,38 @@ def pressure_overlay(run: RunResult, path: Path) -> str | None:
     return _save(fig, path)
 
 
+def axial_profile(run: RunResult, path: Path) -> str | None:
+    """Pressure along the roller axis on the centre line x = 0 (dog-bone edge peaks)."""
+    models = {k: m for k, m in run.models.items() if m.status == "ok" and "pressure_axial" in m.fields}
+    if not models:
+        return None
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    for name, m in models.items():
+        ax.plot(m.fields["y"] * 1e3, m.fields["pressure_axial"] / 1e9, label=name, **STYLE.get(name, {}))
+    ax.set_xlabel("y along the roller (mm)")
+    ax.set_ylabel("pressure at x = 0 (GPa)")
+    ax.set_title(f"{run.scene}: axial pressure profile")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def pressure_map(run: RunResult, path: Path) -> str | None:
+    """The contact pressure field of the first model that has one (footprint)."""
+    m = next((m for m in run.models.values() if m.status == "ok" and "pressure_map" in m.fields
+              and "map_x" in m.fields), None)
+    if m is None:
+        return None
+    x, y, p = m.fields["map_x"], m.fields["map_y"], m.fields["pressure_map"]
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    cs = ax.pcolormesh(y * 1e3, x * 1e3, p / 1e9, shading="nearest", cmap="magma")
+    fig.colorbar(cs, ax=ax, label="pressure (GPa)")
+    ax.set_xlabel("y (mm)")
+    ax.set_ylabel("x (mm)")
+    ax.set_title(f"{run.scene}: contact pressure ({m.model})")
+    return _save(fig, path)
+
+
 def fem_mesh(run: RunResult, path: Path) -> str | None:
     """The FE mesh near the contact (finest level), coloured by body."""
     m = run.models.get("fem")
