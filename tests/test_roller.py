@@ -100,3 +100,55 @@ def test_even_grid_refused(femcheck_run):
 
     with pytest.raises(InputError, match="odd"):
         run("roller-finite", {"numerics.bem_nx": 32}, models=["bem"])
+
+
+def test_finite_line_influence_matches_polar_quadrature():
+    """Independent check of eq 13's coefficients: the double integral done in polar coordinates about the
+    collocation point (the 1/r cancels), including elements clipped at a roller end."""
+    from scipy import integrate
+
+    from femcheck.bem.finite_line import influence
+
+    y, c = np.linspace(-1, 1, 9), 0.25
+    a = np.linspace(0.05, 0.12, 9)
+    C = influence(y, a, c, -1.0, 1.0, 1.0, m=48)
+
+    def polar(j, i):
+        yl, yh, Y, ai = max(-1, y[i] - c), min(1, y[i] + c), y[j], a[i]
+        f = lambda x1, y1: max(0.0, 1 - abs(y1 - y[i]) / c) * np.sqrt(max(0.0, 1 - x1**2 / ai**2))
+
+        def inner(th):
+            ct, st = np.cos(th), np.sin(th)
+            limits = [np.inf]
+            if abs(ct) > 1e-15:
+                limits.append(ai / abs(ct))
+            if st > 1e-15:
+                limits.append((yh - Y) / st)
+            if st < -1e-15:
+                limits.append((yl - Y) / st)
+            R = min(limits)
+            rk = (y[i] - Y) / st if abs(st) > 1e-15 else -1
+            return integrate.quad(lambda r: f(r * ct, Y + r * st), 0, max(R, 0.0),
+                                  points=[rk] if 0 < rk < R else None, limit=200, epsabs=1e-14)[0]
+
+        return integrate.quad(inner, 0, 2 * np.pi, limit=400, epsabs=1e-13, points=[np.pi / 2, 1.5 * np.pi])[0] / np.pi
+
+    for j, i in [(4, 4), (4, 5), (0, 0), (8, 7), (0, 1)]:
+        assert C[j, i] == pytest.approx(polar(j, i), rel=2e-4)
+
+
+@pytest.mark.parametrize("scene", ["roller-finite", "roller-crowned"])
+def test_finite_line_agrees_with_bem(femcheck_run, femcheck_assert_agree, scene):
+    res = femcheck_run(scene)
+    femcheck_assert_agree(res, "p_centre", "finite_line", "bem", rtol=0.02)
+    fl, bem = res.models["finite_line"].quantities, res.models["bem"]
+    assert abs(fl["edge_peak_y"] - bem.quantities["edge_peak_y"]) <= bem.stats["dy"]   # within one element
+    assert fl["total_force"] == pytest.approx(3683.6, rel=1e-9)
+
+
+def test_finite_line_dog_bone(femcheck_run):
+    # Locally Hertzian widths: the end stations, where the pressure peaks, are wider than the centre.
+    res = femcheck_run("roller-finite")
+    fl = res.models["finite_line"]
+    assert fl.quantities["p_max"] > 1.5 * fl.quantities["p_centre"]
+    assert fl.fields["pressure_axial"][0] == pytest.approx(fl.quantities["p_max"], rel=1e-12)

@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import geometry
 from ..analytic import hertz
+from ..bem import finite_line as finite_line_method
 from ..bem import halfspace
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic, effective_modulus
@@ -21,7 +22,7 @@ from ..qoi import half_width
 from ..result import ModelResult
 from ..scene import Key, Scene, material_keys, tolerance_key
 
-MODEL_NAMES = ("analytic", "bem")
+MODEL_NAMES = ("analytic", "bem", "finite_line")
 
 SCHEMA: dict[str, Key] = {
     "geometry.radius": Key("float", "m", "roller radius", lo=0.0),
@@ -50,6 +51,8 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_margin_y": Key("float", "L", "BEM margin beyond each roller end / L", lo=0.0, hi=0.5,
                                  lo_closed=True, hi_closed=True),
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
+    "numerics.finite_line_elements": Key("int", "-", "finite-line elements along the roller (even)", lo=4,
+                                         hi=1024, lo_closed=True, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -65,6 +68,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_domain_x": 1.6,
     "numerics.bem_margin_y": 0.05,
     "numerics.bem_tol": 1e-10,
+    "numerics.finite_line_elements": 64,
 }
 REQUIRED = ("geometry.radius", "geometry.length", "load.normal")
 DEPENDS: dict[str, dict] = {}
@@ -178,7 +182,29 @@ def bem(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem}
+def finite_line(scene: Scene, progress=None) -> ModelResult:
+    """Seed 001's overlapping-element method (eqs 8-17), locally Hertzian half-widths."""
+    n = scene["numerics.finite_line_elements"]
+    if n % 2:
+        raise InputError("numerics.finite_line_elements", f"{n} is odd; allowed: even counts (a station on "
+                         "the roller centre)")
+    gap = gap_function(scene.params)
+    r = finite_line_method.solve(lambda y: gap(np.zeros_like(y), y), reduced_radius(scene.params),
+                                 scene["geometry.length"], modulus(scene.params), scene["load.normal"], n)
+    jc = n // 2
+    jp = int(np.argmax(np.where(r.y >= 0, r.p_m, -1.0)))
+    hz = _hertz(scene.params)
+    x = np.linspace(-1.6 * hz.half_width, 1.6 * hz.half_width, 321)
+    q = {"p_max": float(r.p_m.max()), "p_centre": float(r.p_m[jc]), "half_width": float(r.a[jc]),
+         "edge_peak_y": float(r.y[jp]), "approach": r.approach, "total_force": r.load}
+    stats = {"iterations": r.iterations, "residual": r.residual, "n_elements": n,
+             "element_length": scene["geometry.length"] / n, "half_width_rule": "a = 2 R p_m / E*"}
+    return ModelResult("finite_line", quantities=q, stats=stats,
+                       fields={"x": x, "pressure": r.pressure(x, np.zeros_like(x)), "y": r.y,
+                               "pressure_axial": r.p_m})
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "finite_line": finite_line}
 
 
 def load_of(scene: Scene) -> float:

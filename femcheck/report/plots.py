@@ -13,7 +13,8 @@ from matplotlib.tri import Triangulation  # noqa: E402
 from ..result import RunResult  # noqa: E402
 
 STYLE = {"analytic": dict(color="k", lw=1.2), "bem": dict(color="tab:blue", ls="--", lw=1.4),
-         "fem": dict(color="tab:red", marker=".", ms=3, ls="none")}
+         "fem": dict(color="tab:red", marker=".", ms=3, ls="none"),
+         "finite_line": dict(color="tab:green", marker="+", ms=4, ls="-", lw=0.8)}
 
 
 def _save(fig, path: Path) -> str:
