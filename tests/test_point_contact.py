@@ -132,3 +132,44 @@ def test_approach_that_never_touches_is_refused():
     g = grid(1e-3, 1e-3, 17, 17)
     with pytest.raises(ValueError, match="no contact"):
         solve(g, lambda X, Y: 1e-6 + (X * X + Y * Y) / 0.02, 1e11, None, approach=1e-7)
+
+
+def _boussinesq(x, y, z, nu):
+    """Point-load stresses, Johnson (1985) eq 3.22 in cylindrical form rotated to Cartesian (unit load)."""
+    r2 = x * x + y * y
+    r, rho, c = np.sqrt(r2), np.sqrt(r2 + z * z), 1 / (2 * np.pi)
+    sr = c * ((1 - 2 * nu) / r2 * (1 - z / rho) - 3 * z * r2 / rho**5)
+    st = -c * (1 - 2 * nu) * ((1 - z / rho) / r2 - z / rho**3)
+    trz = -3 * c * r * z * z / rho**5
+    co, si = x / r, y / r
+    return {"sigma_x": sr * co * co + st * si * si, "sigma_y": sr * si * si + st * co * co,
+            "sigma_z": -3 * c * z**3 / rho**5, "tau_xy": (sr - st) * co * si, "tau_xz": trz * co,
+            "tau_yz": trz * si}
+
+
+@pytest.mark.parametrize("tx,ty,z", [(0.3, 0.4, 0.7), (2.0, -1.3, 0.5), (0.1, 0.05, 1.3), (-0.45, 0.9, 0.05)])
+def test_rectangle_stress_kernels_match_boussinesq_quadrature(tx, ty, z):
+    from femcheck.bem.stress import rectangle_stress
+
+    k = rectangle_stress(tx, ty, z, 1.0, 2.0, 0.3)
+    for name, value in k.items():
+        ref = integrate.dblquad(lambda eta, xi: _boussinesq(tx - xi, ty - eta, z, 0.3)[name], -0.5, 0.5, -1.0, 1.0,
+                                epsabs=1e-13, epsrel=1e-11)[0]
+        assert float(value) == pytest.approx(ref, abs=1e-11)
+
+
+def test_sphere_axis_textbook_maxima():
+    from femcheck.analytic.stress import hertz_sphere_maxima
+
+    m = hertz_sphere_maxima(1.0, 1.0, 0.3)      # Johnson 1985 §4.2: tau_1 = 0.31 p0 at z = 0.48 a (nu = 0.3)
+    assert m["tau_max"] == pytest.approx(0.31, abs=0.002)
+    assert m["tau_max_depth"] == pytest.approx(0.48, abs=0.005)
+
+
+def test_bem_subsurface_stress_matches_closed_form(femcheck_run, femcheck_assert_agree):
+    # Issue 3: maximum von Mises and its depth within 1 % of the closed form for hertz-point.
+    res = femcheck_run("hertz-point")
+    for q in ("von_mises_max", "von_mises_max_depth", "tau_max"):
+        femcheck_assert_agree(res, q, "bem", "analytic", rtol=0.01)
+    at = res.models["bem"].stats["stress"]["von_mises_max_at"]
+    assert abs(at["x"]) < 1e-12 and abs(at["y"]) < 1e-12            # on the axis

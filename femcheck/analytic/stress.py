@@ -103,3 +103,24 @@ def line_contact_field(hertz: LineContact, nu: float, nx: int = 161, nz: int = 1
         maxima[f"{key}_depth"] = zm
         maxima[f"{key}_x"] = abs(xm)
     return LineStressField(x, z, comps, vm, tr, maxima)
+
+
+def hertz_sphere_axis(z: np.ndarray, a: float, p0: float, nu: float) -> dict[str, np.ndarray]:
+    """Stresses on the axis below a Hertz sphere contact (Johnson 1985 eq. 3.45): sigma_r = sigma_theta =
+    p0 [-(1 + nu)(1 - (z/a) atan(a/z)) + 1/2 (1 + z^2/a^2)^-1], sigma_z = -p0 (1 + z^2/a^2)^-1 (Pa)."""
+    zeta = np.asarray(z, dtype=float) / a
+    sz = -p0 / (1.0 + zeta * zeta)
+    sr = p0 * (-(1.0 + nu) * (1.0 - zeta * np.arctan(1.0 / zeta)) + 0.5 / (1.0 + zeta * zeta))
+    return {"sigma_r": sr, "sigma_z": sz}
+
+
+def hertz_sphere_maxima(a: float, p0: float, nu: float) -> dict[str, float]:
+    """Maximum von Mises (= |sigma_z - sigma_r| on the axis) and maximum shear (half of it), with depth."""
+    def minus_vm(zeta: float) -> float:
+        s = hertz_sphere_axis(np.array(zeta * a), a, p0, nu)
+        return -float(abs(s["sigma_z"] - s["sigma_r"]))
+
+    res = optimize.minimize_scalar(minus_vm, bounds=(0.05, 3.0), method="bounded", options={"xatol": 1e-10})
+    vm = -float(res.fun)
+    return {"von_mises_max": vm, "von_mises_max_depth": float(res.x * a), "tau_max": 0.5 * vm,
+            "tau_max_depth": float(res.x * a)}

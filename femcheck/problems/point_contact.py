@@ -10,7 +10,9 @@ from typing import Any, Callable
 import numpy as np
 
 from ..analytic import hertz
+from ..analytic import stress as stress_closed_form
 from ..bem import halfspace
+from ..bem import stress as bem_stress
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic, effective_modulus
 from ..qoi import ellipse_fit
@@ -29,6 +31,8 @@ SCHEMA: dict[str, Key] = {
     "load.normal": Key("float", "N", "normal load", lo=0.0),
     **material_keys("body1"),
     **material_keys("body2"),
+    "outputs.subsurface_stress": Key("bool", "-", "compute sub-surface stresses (BEM field; analytic: sphere "
+                                     "axis closed form)"),
     "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
     "models.references": Key("list", "-", "models every other model is compared against", choices=("analytic",)),
     "numerics.bem_cells": Key("int", "-", "BEM cells per side (odd: a cell sits on the centre)", lo=9,
@@ -38,6 +42,10 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
     "numerics.bem_warm_levels": Key("int", "-", "coarser grids solved first as a warm start", lo=0, hi=8,
                                     lo_closed=True, hi_closed=True),
+    "numerics.stress_depths": Key("int", "-", "depth levels of the stress field", lo=4, hi=400,
+                                  lo_closed=True, hi_closed=True),
+    "numerics.stress_depth_max": Key("float", "a_H", "deepest level / Hertz semi-axis x", lo=0.0, hi=20.0,
+                                     hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -50,6 +58,9 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_domain": 1.25,
     "numerics.bem_tol": 1e-10,
     "numerics.bem_warm_levels": 0,
+    "outputs.subsurface_stress": False,
+    "numerics.stress_depths": 40,
+    "numerics.stress_depth_max": 1.5,
 }
 REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {}
@@ -113,6 +124,11 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
     q = {"p_max": h.p_max, "semi_axis_x": h.semi_axis_x, "semi_axis_y": h.semi_axis_y,
          "contact_area": h.contact_area, "approach": h.approach, "total_force": h.load}
     stats = {"E_star": h.modulus, "ellipticity": h.semi_axis_y / h.semi_axis_x}
+    rx, ry = radii(scene.params)
+    if scene["outputs.subsurface_stress"] and rx == ry:
+        # closed form on the axis of a sphere contact (Johnson eq 3.45), in body 2 (the flat)
+        q.update(stress_closed_form.hertz_sphere_maxima(h.semi_axis_x, h.p_max, scene["materials.body2.nu"]))
+        stats["stress_body"] = "body2"
     return ModelResult("analytic", quantities=q, stats=stats, fields={"x": x, "pressure": h.pressure(x, 0 * x)})
 
 
@@ -137,8 +153,23 @@ def bem(scene: Scene, progress=None) -> ModelResult:
              "a_over_dx": h.semi_axis_x / g.dx, "contact_cells": int(c.sum()),
              "ellipse_fit_residual": fit["fit_residual"], "solver": "polonsky_keer", "convolution": "dcfft"}
     j = g.ny // 2
-    return ModelResult("bem", quantities=q, stats=stats,
-                       fields={"x": g.x, "pressure": r.pressure[:, j], "pressure_map": r.pressure})
+    fields = {"x": g.x, "pressure": r.pressure[:, j], "pressure_map": r.pressure, "map_x": g.x, "map_y": g.y}
+    if scene["outputs.subsurface_stress"]:
+        if scene["materials.body2.rigid"]:
+            raise InputError("outputs.subsurface_stress", "stresses are computed in body2, which is rigid")
+        depths = bem_stress.graded_depths(scene["numerics.stress_depth_max"] * h.semi_axis_x,
+                                          scene["numerics.stress_depths"])
+        f = bem_stress.subsurface_stresses(r.pressure, g, depths, scene["materials.body2.nu"])
+        vm, tr = f.von_mises(), f.tresca()
+        m_vm, m_tr = bem_stress.maximum(vm, depths, g), bem_stress.maximum(tr, depths, g)
+        m_xz = bem_stress.maximum(np.abs(f.components["tau_xz"]), depths, g)
+        q.update({"von_mises_max": m_vm["value"], "von_mises_max_depth": m_vm["depth"],
+                  "tau_max": m_tr["value"], "tau_max_depth": m_tr["depth"], "tau_xz_max": m_xz["value"]})
+        stats["stress"] = {"depths": int(depths.size), "depth_max": float(depths[-1]), "body": "body2",
+                           "von_mises_max_at": m_vm, "tau_xz_max_at": m_xz}
+        fields.update({"stress_x": g.x, "stress_z": depths, "von_mises": vm[:, :, j].copy(),
+                       "tau_xz": f.components["tau_xz"][:, :, j].copy()})
+    return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem}

@@ -125,9 +125,9 @@ def fem_convergence(run: RunResult, path: Path) -> str | None:
 
 
 def stress_field(run: RunResult, path: Path) -> str | None:
-    """Von Mises and orthogonal shear tau_xz below the contact (analytic)."""
-    m = run.models.get("analytic")
-    if m is None or "von_mises" not in m.fields:
+    """Von Mises and orthogonal shear tau_xz in the plane y = 0 below the contact (first model with a field)."""
+    m = next((m for m in run.models.values() if m.status == "ok" and "von_mises" in m.fields), None)
+    if m is None:
         return None
     x, z = m.fields["stress_x"], m.fields["stress_z"]
     p0 = m.quantities["p_max"]
@@ -143,6 +143,7 @@ def stress_field(run: RunResult, path: Path) -> str | None:
         ax.set_xlabel("x (mm)")
     axes[0].invert_yaxis()
     axes[0].set_ylabel("depth z (mm)")
+    fig.suptitle(f"{run.scene}: sub-surface stresses ({m.model})")
     return _save(fig, path)
 
 
