@@ -240,6 +240,29 @@ def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     raise typer.Exit(1 if bad else 0)
 
 
+@app.command()
+def calibrate(scene: str = typer.Argument(..., help="scene whose kind has a calibrated model"),
+              set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override"),
+              out: Optional[Path] = typer.Option(None, "--out", help="JSON file (default: the packaged one)"))\
+        -> None:
+    """Recalibrate a semi-analytic model against the scene's numerical reference and store its coefficients."""
+    from .problems import problem
+
+    sc = _scene(scene, set_)
+    prob = problem(sc.kind)
+    if not hasattr(prob, "calibrate"):
+        raise InputError("scene", f"kind {sc.kind} has no calibrated model")
+    with progress_bar(None, f"calibrate {sc.name}") as advance:
+        data = prob.calibrate(sc, progress=advance)
+    from .analytic.indent import COEFFS
+
+    _write_json(out or COEFFS, data)
+    pv = data["provenance"]
+    out_console.print({k: v for k, v in data.items() if k != "provenance"})
+    out_console.print(f"misfit to the calibration samples: max {pv['max_rel_misfit']:.2%}, "
+                      f"rms {pv['rms_rel_misfit']:.2%}; written {out or COEFFS}")
+
+
 def main() -> None:
     try:
         app()

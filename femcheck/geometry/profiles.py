@@ -82,3 +82,17 @@ def height_map(x: np.ndarray, y: np.ndarray, h: np.ndarray, base: Gap | None = N
         return v + base(X, Y) if base is not None else v
 
     return gap
+
+
+def indent_height(r: np.ndarray, diameter: float, depth: float, decay: float) -> np.ndarray:
+    """Surface height (m) of an indent, seed 004 eq 2.16 / B.1: R(r) = -D exp(-K r^2/phi^2) cos(pi r / phi):
+    a hole of depth D (R(0) = -D) surrounded by shoulders whose shape the decay K controls (K = 3: high
+    shoulders, K = 8: nearly none)."""
+    r = np.asarray(r, dtype=float)
+    return -depth * np.exp(-decay * r * r / diameter**2) * np.cos(np.pi * r / diameter)
+
+
+def indented(base: Gap, diameter: float, depth: float, decay: float, x0: float = 0.0, y0: float = 0.0) -> Gap:
+    """``base`` gap with an indent centred at (x0, y0) on one surface: the hole opens the gap, the shoulders
+    close it (gap = base - R)."""
+    return lambda X, Y: base(X, Y) - indent_height(np.hypot(X - x0, Y - y0), diameter, depth, decay)

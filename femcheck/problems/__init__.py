@@ -10,7 +10,8 @@ from types import ModuleType
 
 from ..errors import InputError
 
-KINDS = {"line_contact": "line_contact", "point_contact": "point_contact", "roller_contact": "roller_contact"}
+KINDS = {"line_contact": "line_contact", "point_contact": "point_contact", "roller_contact": "roller_contact",
+         "indent_contact": "indent_contact"}
 
 
 def problem(kind: str) -> ModuleType:
