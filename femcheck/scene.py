@@ -94,6 +94,23 @@ def material_keys(body: str) -> dict[str, Key]:
     }
 
 
+def elastic(params: dict[str, Any], body: str) -> Elastic:
+    """The Elastic of ``materials.<body>`` from a flat parameter dict (E, nu ignored when rigid)."""
+    return Elastic(float(params.get(f"materials.{body}.E", 1.0)), float(params.get(f"materials.{body}.nu", 0.0)),
+                   bool(params.get(f"materials.{body}.rigid", False)))
+
+
+def check_body_pair(params: dict[str, Any], bodies: tuple[str, str]) -> None:
+    """Elastic bodies need E and nu; at least one of the two must be elastic."""
+    for body in bodies:
+        if not params.get(f"materials.{body}.rigid", False):
+            for k in (f"materials.{body}.E", f"materials.{body}.nu"):
+                if k not in params:
+                    raise InputError(k, f"required for an elastic {body} (or set materials.{body}.rigid = true)")
+    if all(params.get(f"materials.{b}.rigid", False) for b in bodies):
+        raise InputError(f"materials.{bodies[1]}.rigid", "both bodies rigid: at least one must be elastic")
+
+
 def tolerance_key(doc: str) -> Key:
     return Key("float", "-", doc, lo=0.0, hi=1.0, hi_closed=True)
 
@@ -122,9 +139,7 @@ class Scene:
         return {k[n:]: v for k, v in self.params.items() if k.startswith(prefix + ".")}
 
     def material(self, body: str) -> Elastic:
-        rigid = bool(self.get(f"materials.{body}.rigid", False))
-        return Elastic(float(self.get(f"materials.{body}.E", 1.0)), float(self.get(f"materials.{body}.nu", 0.0)),
-                       rigid)
+        return elastic(self.params, body)
 
     def with_overrides(self, overrides: dict[str, Any]) -> "Scene":
         """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry)."""

@@ -8,7 +8,6 @@ smooth solution). Quantities: ``additional_pressure`` dP = max(p_indented - p_sm
 """
 from __future__ import annotations
 
-import json
 import time
 from typing import Any, Callable
 
@@ -18,10 +17,10 @@ from .. import __version__
 from ..analytic import hertz, indent
 from ..bem import halfspace
 from ..errors import ConvergenceError, InputError
-from ..geometry.profiles import indent_height, indented, paraboloid
-from ..materials import Elastic, effective_modulus
+from ..geometry.profiles import indented, paraboloid
+from ..materials import effective_modulus
 from ..result import ModelResult
-from ..scene import Key, Scene, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem")
 
@@ -57,20 +56,12 @@ DEPENDS: dict[str, dict] = {}
 
 
 def _hertz(params: dict[str, Any]) -> hertz.EllipticContact:
-    mats = [Elastic(params.get(f"materials.{b}.E", 1.0), params.get(f"materials.{b}.nu", 0.0),
-                    params[f"materials.{b}.rigid"]) for b in ("body1", "body2")]
-    R = params["geometry.radius"]
-    return hertz.point_contact(params["load.normal"], R, effective_modulus(*mats))
+    e_star = effective_modulus(elastic(params, "body1"), elastic(params, "body2"))
+    return hertz.point_contact(params["load.normal"], params["geometry.radius"], e_star)
 
 
 def validate(params: dict[str, Any]) -> None:
-    for body in ("body1", "body2"):
-        if not params[f"materials.{body}.rigid"]:
-            for k in (f"materials.{body}.E", f"materials.{body}.nu"):
-                if k not in params:
-                    raise InputError(k, f"required for an elastic {body} (or set materials.{body}.rigid = true)")
-    if params["materials.body1.rigid"] and params["materials.body2.rigid"]:
-        raise InputError("materials.body2.rigid", "both bodies rigid: at least one must be elastic")
+    check_body_pair(params, ("body1", "body2"))
     h = _hertz(params)
     if h.semi_axis_x / params["geometry.radius"] > 0.1:
         raise InputError("load.normal", f"{params['load.normal']:g} N gives a/R > 0.1 (half-space theory fails)")

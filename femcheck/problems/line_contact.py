@@ -5,7 +5,6 @@ scikit-fem, mesh levels with Richardson extrapolation).
 """
 from __future__ import annotations
 
-import time
 from typing import Any, Callable
 
 import numpy as np
@@ -18,7 +17,7 @@ from ..fem.line_contact import FEMLineSettings, extrapolate, solve_level
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
-from ..scene import Key, Scene, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1   # beyond this the half-space and small-strain assumptions of every model here fail
@@ -88,20 +87,13 @@ DEPENDS = {
 
 
 def _hertz(params: dict[str, Any]) -> hertz.LineContact:
-    from ..materials import Elastic
-
-    cyl = Elastic(params.get("materials.cylinder.E", 1.0), params.get("materials.cylinder.nu", 0.0),
-                  params["materials.cylinder.rigid"])
-    blk = Elastic(params["materials.block.E"], params["materials.block.nu"])
-    return hertz.line_contact(params["load.per_length"], params["geometry.radius"], effective_modulus(cyl, blk))
+    e_star = effective_modulus(elastic(params, "cylinder"), elastic(params, "block"))
+    return hertz.line_contact(params["load.per_length"], params["geometry.radius"], e_star)
 
 
 def validate(params: dict[str, Any]) -> None:
     """Cross-key checks: an elastic cylinder needs E and nu; the contact must stay small against R."""
-    if not params["materials.cylinder.rigid"]:
-        for k in ("materials.cylinder.E", "materials.cylinder.nu"):
-            if k not in params:
-                raise InputError(k, "required for an elastic cylinder (or set materials.cylinder.rigid = true)")
+    check_body_pair(params, ("cylinder", "block"))
     h = _hertz(params)
     ratio = h.half_width / params["geometry.radius"]
     if ratio > MAX_A_OVER_R:

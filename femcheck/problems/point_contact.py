@@ -14,10 +14,10 @@ from ..analytic import stress as stress_closed_form
 from ..bem import halfspace
 from ..bem import stress as bem_stress
 from ..errors import ConvergenceError, InputError
-from ..materials import Elastic, effective_modulus
+from ..materials import effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
-from ..scene import Key, Scene, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem")
 MAX_A_OVER_R = 0.1
@@ -72,14 +72,9 @@ def radii(params: dict[str, Any]) -> tuple[float, float]:
     return params["geometry.Rx"], params["geometry.Ry"]
 
 
-def _material(params: dict[str, Any], body: str) -> Elastic:
-    return Elastic(params.get(f"materials.{body}.E", 1.0), params.get(f"materials.{body}.nu", 0.0),
-                   params[f"materials.{body}.rigid"])
-
-
 def _hertz(params: dict[str, Any]) -> hertz.EllipticContact:
     rx, ry = radii(params)
-    e_star = effective_modulus(_material(params, "body1"), _material(params, "body2"))
+    e_star = effective_modulus(elastic(params, "body1"), elastic(params, "body2"))
     return hertz.elliptic_contact(params["load.normal"], rx, ry, e_star)
 
 
@@ -93,13 +88,7 @@ def validate(params: dict[str, Any]) -> None:
         raise InputError(missing, "required (or give geometry.radius for a sphere)")
     if params["geometry.profile"] == "sphere" and not has_r:
         raise InputError("geometry.profile", "'sphere' needs geometry.radius; allowed for Rx, Ry: paraboloid")
-    for body in ("body1", "body2"):
-        if not params[f"materials.{body}.rigid"]:
-            for k in (f"materials.{body}.E", f"materials.{body}.nu"):
-                if k not in params:
-                    raise InputError(k, f"required for an elastic {body} (or set materials.{body}.rigid = true)")
-    if params["materials.body1.rigid"] and params["materials.body2.rigid"]:
-        raise InputError("materials.body2.rigid", "both bodies rigid: at least one must be elastic")
+    check_body_pair(params, ("body1", "body2"))
     h = _hertz(params)
     rx, ry = radii(params)
     ratio = max(h.semi_axis_x / rx, h.semi_axis_y / ry)

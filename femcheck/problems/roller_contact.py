@@ -17,10 +17,10 @@ from ..analytic import hertz
 from ..bem import finite_line as finite_line_method
 from ..bem import halfspace
 from ..errors import ConvergenceError, InputError
-from ..materials import Elastic, effective_modulus
+from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
-from ..scene import Key, Scene, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem", "finite_line")
 
@@ -74,13 +74,8 @@ REQUIRED = ("geometry.radius", "geometry.length", "load.normal")
 DEPENDS: dict[str, dict] = {}
 
 
-def _material(params: dict[str, Any], body: str) -> Elastic:
-    return Elastic(params.get(f"materials.{body}.E", 1.0), params.get(f"materials.{body}.nu", 0.0),
-                   params[f"materials.{body}.rigid"])
-
-
 def modulus(params: dict[str, Any]) -> float:
-    return effective_modulus(_material(params, "roller"), _material(params, "race"))
+    return effective_modulus(elastic(params, "roller"), elastic(params, "race"))
 
 
 def reduced_radius(params: dict[str, Any]) -> float:
@@ -93,13 +88,7 @@ def _hertz(params: dict[str, Any]) -> hertz.LineContact:
 
 
 def validate(params: dict[str, Any]) -> None:
-    for body in ("roller", "race"):
-        if not params[f"materials.{body}.rigid"]:
-            for k in (f"materials.{body}.E", f"materials.{body}.nu"):
-                if k not in params:
-                    raise InputError(k, f"required for an elastic {body} (or set materials.{body}.rigid = true)")
-    if params["materials.roller.rigid"] and params["materials.race.rigid"]:
-        raise InputError("materials.race.rigid", "both bodies rigid: at least one must be elastic")
+    check_body_pair(params, ("roller", "race"))
     rr = params.get("geometry.race_radius")
     if rr is not None and rr < 0 and -rr <= params["geometry.radius"]:
         raise InputError("geometry.race_radius", f"a concave raceway must be larger than the roller: allowed "
