@@ -254,13 +254,12 @@ def calibrate(scene: str = typer.Argument(..., help="scene whose kind has a cali
         raise InputError("scene", f"kind {sc.kind} has no calibrated model")
     with progress_bar(None, f"calibrate {sc.name}") as advance:
         data = prob.calibrate(sc, progress=advance)
-    from .analytic.indent import COEFFS
-
-    _write_json(out or COEFFS, data)
+    target = out or prob.CALIBRATION_FILE
+    _write_json(target, data)
     pv = data["provenance"]
     out_console.print({k: v for k, v in data.items() if k != "provenance"})
     out_console.print(f"misfit to the calibration samples: max {pv['max_rel_misfit']:.2%}, "
-                      f"rms {pv['rms_rel_misfit']:.2%}; written {out or COEFFS}")
+                      f"rms {pv['rms_rel_misfit']:.2%}; written {target}")
 
 
 def main() -> None:

@@ -106,7 +106,7 @@ def solve_indented(params: dict[str, Any], n: int | None = None) -> dict[str, An
                                "contact reaches the edge of the BEM domain; raise numerics.bem_domain")
     return {"grid": g, "smooth": smooth, "dent": dent, "dp": float((dent.pressure - smooth.pressure).max()),
             "F": float(dent.gap[c, c] / d) if d > 0 else 0.0, "p_centre": float(dent.pressure[c, c]),
-            "p_hertz": h.p_max, "phi": phi, "depth": d}
+            "p_hertz": h.p_max, "a": a, "phi": phi, "depth": d}
 
 
 def bem(scene: Scene, progress=None) -> ModelResult:
@@ -115,7 +115,7 @@ def bem(scene: Scene, progress=None) -> ModelResult:
     q = {"additional_pressure": s["dp"], "indent_depth_ratio": s["F"], "p_max": float(dent.pressure.max()),
          "total_force": dent.load}
     stats = {"zone": "A" if s["p_centre"] > 0 else "B", "iterations": dent.iterations, "residual": dent.residual,
-             "smooth_iterations": s["smooth"].iterations, "nx": g.nx, "dx_over_a": g.dx / (s["phi"] / scene["indent.diameter"]),
+             "smooth_iterations": s["smooth"].iterations, "nx": g.nx, "dx_over_a": g.dx / s["a"],
              "cells_per_indent_diameter": s["phi"] / g.dx, "additional_pressure_over_p_hertz": s["dp"] / s["p_hertz"]}
     j = g.ny // 2
     return ModelResult("bem", quantities=q, stats=stats,
@@ -124,6 +124,7 @@ def bem(scene: Scene, progress=None) -> ModelResult:
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem}
+CALIBRATION_FILE = indent.COEFFS        # where `femcheck calibrate` stores the zone A/B coefficients
 
 # Calibration grid: zone A (S <= 1/4) for n, m and zone B for s, omega, at Phi = 0.5 over the thesis' K range.
 CALIBRATION_K = (3.0, 4.0, 5.0, 6.0, 8.0)

@@ -24,38 +24,35 @@ def _save(fig, path: Path) -> str:
     return path.name
 
 
-def pressure_overlay(run: RunResult, path: Path) -> str | None:
-    """Pressure profiles of every model on one axis (x >= 0; the profiles are symmetric)."""
-    models = {k: m for k, m in run.models.items() if m.status == "ok" and "pressure" in m.fields}
+def _overlay(run: RunResult, path: Path, x_field: str, p_field: str, xlabel: str, ylabel: str, title: str,
+             positive_x: bool = False) -> str | None:
+    """Profiles ``p_field`` against ``x_field`` of every ok model that has them, on one axis (mm, GPa)."""
+    models = {k: m for k, m in run.models.items() if m.status == "ok" and p_field in m.fields}
     if not models:
         return None
-    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    fig, ax = plt.subplots(figsize=(6.4, 3.7))
     for name, m in models.items():
-        x, p = m.fields["x"], m.fields["pressure"]
-        keep = x >= 0
+        x, p = m.fields[x_field], m.fields[p_field]
+        keep = x >= 0 if positive_x else np.ones(x.shape, dtype=bool)
         ax.plot(x[keep] * 1e3, p[keep] / 1e9, label=name, **STYLE.get(name, {}))
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("contact pressure (GPa)")
-    ax.set_title(f"{run.scene}: pressure profiles")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(f"{run.scene}: {title}")
     ax.legend()
     ax.grid(alpha=0.3)
     return _save(fig, path)
+
+
+def pressure_overlay(run: RunResult, path: Path) -> str | None:
+    """Pressure profiles across the contact (x >= 0; the profiles are symmetric)."""
+    return _overlay(run, path, "x", "pressure", "x (mm)", "contact pressure (GPa)", "pressure profiles",
+                    positive_x=True)
 
 
 def axial_profile(run: RunResult, path: Path) -> str | None:
     """Pressure along the roller axis on the centre line x = 0 (dog-bone edge peaks)."""
-    models = {k: m for k, m in run.models.items() if m.status == "ok" and "pressure_axial" in m.fields}
-    if not models:
-        return None
-    fig, ax = plt.subplots(figsize=(6.4, 3.6))
-    for name, m in models.items():
-        ax.plot(m.fields["y"] * 1e3, m.fields["pressure_axial"] / 1e9, label=name, **STYLE.get(name, {}))
-    ax.set_xlabel("y along the roller (mm)")
-    ax.set_ylabel("pressure at x = 0 (GPa)")
-    ax.set_title(f"{run.scene}: axial pressure profile")
-    ax.legend()
-    ax.grid(alpha=0.3)
-    return _save(fig, path)
+    return _overlay(run, path, "y", "pressure_axial", "y along the roller (mm)", "pressure at x = 0 (GPa)",
+                    "axial pressure profile")
 
 
 def pressure_map(run: RunResult, path: Path) -> str | None:
