@@ -36,15 +36,16 @@ def bench(scene: Scene, models: list[str] | None = None,
     ref = run_model(scene, "analytic", use_cache=False)
     scale = prob.profile_scale(scene)
     rows = []
-    for model, sweep in prob.bench_sweeps(scene).items():
+    for label, sweep in prob.bench_sweeps(scene).items():
+        model = label.split("[")[0]          # "bem[mlmi]": the bem model with another back-end, its own rows
         if models and model not in models:
             continue
         for overrides in sweep:
             sc = scene.with_overrides(overrides)
             if on_step:
-                on_step(f"{model} {overrides}")
+                on_step(f"{label} {overrides}")
             res, t, repeats = _timed(sc, model)
-            row: dict[str, Any] = {"model": model, "setting": overrides, "status": res.status,
+            row: dict[str, Any] = {"model": label, "setting": overrides, "status": res.status,
                                    "time_s": t, "repeats": repeats}
             if res.status == "ok":
                 for q in quantities(res, ref):

@@ -52,7 +52,8 @@ def _self_compliance(operator: Callable[[np.ndarray], np.ndarray], h: np.ndarray
 
 def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], load: float | None,
                   cell_area: float, p0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 1000,
-                  approach: float | None = None) -> NormalContactResult:
+                  approach: float | None = None,
+                  preconditioner: Callable[[np.ndarray], np.ndarray] | None = None) -> NormalContactResult:
     """Polonsky-Keer CG under load control (``load`` given) or approach control (``approach`` given).
 
     Load control: the rigid approach is the mean gap over the contact set and p is rescaled after every step so
@@ -61,6 +62,12 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
     Parameters: ``h`` initial gap (m) on the grid; ``operator`` p -> surface displacement (m); ``load`` total
     force F (N, or N/m in 2D); ``cell_area`` A (m^2, or m in 2D); ``p0`` warm start (Pa); ``tol`` on the
     relative gap residual. Raises :class:`ConvergenceError` if ``max_iter`` is reached.
+
+    ``preconditioner`` (optional) maps a gap residual to a pressure correction, an approximate inverse of
+    ``operator`` such as :class:`femcheck.bem.convolution.CirculantPreconditioner`. It is applied to the residual
+    restricted to the contact set and its result restricted again (and, under load control, projected onto zero
+    mean so that the load is unchanged), so CG keeps working on the symmetric system of the contact set:
+    PK's direction t = g + (G/G_old) t becomes t = z + (g.z / g_old.z_old) t with z = M g.
     """
     if (load is None) == (approach is None):
         raise ValueError("give exactly one of load (load control) or approach (approach control)")
@@ -94,8 +101,14 @@ def polonsky_keer(h: np.ndarray, operator: Callable[[np.ndarray], np.ndarray], l
         if residual < tol:
             return NormalContactResult(p, g, contact, delta, it, residual, float(cell_area * p.sum()),
                                        time.perf_counter() - t0)
-        G = float(np.dot(g[contact], g[contact]))
-        t = np.where(contact, g + (0.0 if restart else G / g_old) * t, 0.0)
+        if preconditioner is None:
+            z = g
+        else:
+            z = np.where(contact, preconditioner(np.where(contact, g, 0.0)), 0.0)
+            if load is not None:
+                z[contact] -= z[contact].mean()
+        G = float(np.dot(g[contact], z[contact]))
+        t = np.where(contact, z + (0.0 if restart else G / g_old) * t, 0.0)
         g_old = G
         r = operator(t)
         if load is not None:

@@ -40,6 +40,9 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_domain": Key("float", "a_H", "BEM half-side / Hertz semi-axis (each direction)", lo=1.05,
                                hi=10.0, hi_closed=True),
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
+    "numerics.bem_convolution": Key("str", "-", "influence-coefficient sum: exact DC-FFT or multilevel "
+                                    "multi-integration (mlmi; needs cells with dy/dx <= 2)",
+                                    choices=halfspace.CONVOLUTIONS),
     "numerics.bem_warm_levels": Key("int", "-", "coarser grids solved first as a warm start", lo=0, hi=8,
                                     lo_closed=True, hi_closed=True),
     "numerics.stress_depths": Key("int", "-", "depth levels of the stress field", lo=4, hi=400,
@@ -57,6 +60,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_cells": 65,
     "numerics.bem_domain": 1.25,
     "numerics.bem_tol": 1e-10,
+    "numerics.bem_convolution": "dcfft",
     "numerics.bem_warm_levels": 0,
     "outputs.subsurface_stress": False,
     "numerics.stress_depths": 40,
@@ -91,6 +95,10 @@ def validate(params: dict[str, Any]) -> None:
     check_body_pair(params, ("body1", "body2"))
     h = _hertz(params)
     rx, ry = radii(params)
+    aspect = h.semi_axis_y / h.semi_axis_x     # the BEM cell aspect ratio: the grid follows the ellipse
+    if params["numerics.bem_convolution"] == "mlmi" and not 0.5 <= aspect <= 2.0:
+        raise InputError("numerics.bem_convolution", f"mlmi needs BEM cells with dy/dx in [0.5, 2]; this contact "
+                         f"gives {aspect:.3g}; allowed here: dcfft")
     ratio = max(h.semi_axis_x / rx, h.semi_axis_y / ry)
     if ratio > MAX_A_OVER_R:
         w_max = params["load.normal"] * (MAX_A_OVER_R / ratio) ** 3       # a ~ W^(1/3)
@@ -127,7 +135,8 @@ def bem(scene: Scene, progress=None) -> ModelResult:
     n, dom = scene["numerics.bem_cells"], scene["numerics.bem_domain"]
     g = halfspace.grid(dom * h.semi_axis_x, dom * h.semi_axis_y, n, n)
     sol = halfspace.solve(g, gap_function(scene.params), h.modulus, scene["load.normal"], tol=scene["numerics.bem_tol"],
-                          warm_levels=scene["numerics.bem_warm_levels"])
+                          warm_levels=scene["numerics.bem_warm_levels"],
+                          convolution=scene["numerics.bem_convolution"])
     r = sol.result
     c = r.contact
     if c[0, :].any() or c[-1, :].any() or c[:, 0].any() or c[:, -1].any():
@@ -140,7 +149,8 @@ def bem(scene: Scene, progress=None) -> ModelResult:
          "total_force": r.load}
     stats = {**sol.stats, "residual": r.residual, "nx": g.nx, "ny": g.ny, "dx": g.dx, "dy": g.dy,
              "a_over_dx": h.semi_axis_x / g.dx, "contact_cells": int(c.sum()),
-             "ellipse_fit_residual": fit["fit_residual"], "solver": "polonsky_keer", "convolution": "dcfft"}
+             "ellipse_fit_residual": fit["fit_residual"], "solver": "polonsky_keer",
+             "convolution": scene["numerics.bem_convolution"], "preconditioner": "circulant"}
     j = g.ny // 2
     fields = {"x": g.x, "pressure": r.pressure[:, j], "pressure_map": r.pressure, "map_x": g.x, "map_y": g.y}
     if scene["outputs.subsurface_stress"]:
@@ -199,4 +209,9 @@ def max_load(params: dict[str, Any]) -> float:
 
 
 def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
-    return {"bem": [{"numerics.bem_cells": n} for n in (17, 25, 33, 49, 65, 97, 129, 193, 257, 385, 513)]}
+    dcfft = [{"numerics.bem_cells": n} for n in (17, 25, 33, 49, 65, 97, 129, 193, 257, 385, 513)]
+    mlmi = [{"numerics.bem_cells": n, "numerics.bem_convolution": "mlmi"} for n in (17, 33, 65, 129, 257)]
+    h = _hertz(scene.params)
+    if 0.5 <= h.semi_axis_y / h.semi_axis_x <= 2.0:
+        return {"bem": dcfft, "bem[mlmi]": mlmi}
+    return {"bem": dcfft}
