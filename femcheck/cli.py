@@ -114,14 +114,15 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
             models: Optional[str] = typer.Option(None, "--models", help="comma-separated models"),
             out: Optional[Path] = typer.Option(None, "--out", help="write the report (index.html, summary.json, figures) here"),
             json_out: bool = typer.Option(False, "--json", help="print one JSON object"),
-            rebuild: bool = typer.Option(False, "--rebuild", help="ignore cached FEM results")) -> None:
+            rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results")) -> None:
     """Run one scene and compare its models."""
     from .runner import run
 
     sc = _scene(scene, set_)
     t0 = time.perf_counter()
     with progress_bar(None, sc.name) as advance:
-        res = run(sc, models=_models(models), rebuild=rebuild, progress=advance)
+        # a scene as shipped (no --set) is stored as a reference; one-off variations only go to the cache
+        res = run(sc, models=_models(models), rebuild=rebuild, progress=advance, store_references=not set_)
     if out is not None:
         from .report.html import write_report
 
@@ -136,8 +137,9 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
 @app.command()
 def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
           out: Optional[Path] = typer.Option(None, "--out", help="report directory (default reports/NAME)"),
-          rebuild: bool = typer.Option(False, "--rebuild", help="ignore cached FEM results")) -> None:
-    """Run every scene tagged NAME and write DIR/index.html and DIR/summary.json."""
+          rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results")) -> None:
+    """Run every scene tagged NAME and write DIR/index.html and DIR/summary.json. FEM references are taken
+    from references/ when their provenance matches, else solved and stored there."""
     from .report.html import write_report
     from .runner import run
     from .scene import builtin_scene_files, load_scene
@@ -151,7 +153,7 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
     runs = []
     with progress_bar(len(scenes), f"suite {name}") as advance:
         for sc in scenes:
-            runs.append(run(sc, rebuild=rebuild, progress=lambda text: advance(text, 0)))
+            runs.append(run(sc, rebuild=rebuild, progress=lambda text: advance(text, 0), store_references=True))
             advance(sc.name)
     index = write_report(runs, out, name, time.perf_counter() - t0)
     for r in runs:

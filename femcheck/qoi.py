@@ -65,7 +65,8 @@ def ellipse_fit(X: np.ndarray, Y: np.ndarray, p: np.ndarray) -> dict[str, float]
     the semi-axes are the distances from the quadratic's centre to its zero level along x and y. On Hertz
     cases this located the semi-axes within 0.03 % at a/dx = 13, where counting loaded cells is only good to
     about dx/a = 8 %. ``fit_residual`` (rms misfit of p^2 / p_max^2) says how elliptical the contact is:
-    a large value means the semi-axes describe an equivalent ellipse only.
+    a large value means the semi-axes describe an equivalent ellipse only. ``peak`` is the fitted maximum
+    pressure, sqrt of the quadratic's top (Pa).
     """
     q = np.asarray(p, dtype=float) ** 2
     sel = q > 0
@@ -81,5 +82,5 @@ def ellipse_fit(X: np.ndarray, Y: np.ndarray, p: np.ndarray) -> dict[str, float]
     if not (top > 0 and c[3] < 0 and c[5] < 0):
         raise ValueError("loaded region is not elliptical (fitted p^2 has no maximum)")
     return {"semi_axis_x": float(np.sqrt(-top / c[3])), "semi_axis_y": float(np.sqrt(-top / c[5])),
-            "centre_x": float(x0), "centre_y": float(y0),
+            "centre_x": float(x0), "centre_y": float(y0), "peak": float(np.sqrt(top * qm)),
             "fit_residual": float(np.sqrt(np.mean((basis @ c - z) ** 2)))}

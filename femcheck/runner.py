@@ -5,7 +5,7 @@ import time
 from pathlib import Path
 from typing import Any, Callable
 
-from . import cache
+from . import cache, references
 from .checks import physical_violations
 from .compare import compare
 from .errors import ConvergenceError, InputError
@@ -23,14 +23,19 @@ def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = 
 
 
 def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = False,
-              progress: Progress | None = None) -> ModelResult:
+              progress: Progress | None = None, store_references: bool = False) -> ModelResult:
     """Run one model; failures become ``status='failed'`` with the reason, never an exception (bad input
-    still raises InputError). Results of models listed in the kind's DEPENDS are cached."""
+    still raises InputError). Results of models listed in the kind's DEPENDS are cached; those marked as
+    references are first looked up in the stored references (:mod:`femcheck.references`) and, with
+    ``store_references``, stored there after a solve."""
     prob = problem(scene.kind)
     dep = prob.DEPENDS.get(name)
     k = None
+    is_reference = bool(dep and dep.get("reference"))
     if dep is not None and use_cache:
         k = cache.key(scene.kind, name, scene.params, dep["params"], dep["code"])
+        if not rebuild and is_reference and (ref := references.load(scene.kind, name, k)) is not None:
+            return ref
         if not rebuild and (hit := cache.load(k)) is not None:
             return hit
     t0 = time.perf_counter()
@@ -48,11 +53,15 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
         res.status, res.error = "failed", "; ".join(issues)
     elif k is not None:
         cache.store(k, res)
+        if is_reference and store_references:
+            relevant = {p: v for p, v in scene.params.items() if p.startswith(dep["params"])}
+            references.store(scene.kind, name, k, res, scene.name, relevant)
     return res
 
 
 def run(scene: Scene | str | Path, overrides: dict[str, Any] | None = None, models: list[str] | None = None,
-        use_cache: bool = True, rebuild: bool = False, progress: Progress | None = None) -> RunResult:
+        use_cache: bool = True, rebuild: bool = False, progress: Progress | None = None,
+        store_references: bool = False) -> RunResult:
     """Run ``models`` (default: the scene's ``models.run``) and compare them with the scene's references."""
     sc = resolve_scene(scene, overrides)
     prob = problem(sc.kind)
@@ -64,6 +73,6 @@ def run(scene: Scene | str | Path, overrides: dict[str, Any] | None = None, mode
     for n in names:
         if progress:
             progress(f"{sc.name}: {n}")
-        results[n] = run_model(sc, n, use_cache, rebuild, progress)
+        results[n] = run_model(sc, n, use_cache, rebuild, progress, store_references)
     comparisons = compare(sc, results, prob.profile_scale(sc))
     return RunResult(sc.name, dict(sc.params), results, comparisons, sc.kind, sc.description)

@@ -1,0 +1,91 @@
+"""Gmsh builders for 3D contact models: quarter blocks refined around the contact patch.
+
+The block occupies [0, Lx] x [0, Ly] x [-H, 0]; the contact patch is centred at the origin of the top face and
+the planes x = 0 and y = 0 are symmetry planes, so a doubly symmetric scene (sphere, ellipsoid, centred
+roller) needs a quarter of the block. Element size is ``h_contact`` inside the (elliptical) patch zone and
+grows linearly with the distance from it (Gmsh MathEval background field) up to ``h_max``. Tetrahedra by HXT
+(FEM-NOTES: 4-13x faster than the default Delaunay).
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .mesh2d import _Gmsh
+
+
+@dataclass(frozen=True)
+class BlockSpec:
+    """Quarter block and its sizing, lengths in m. The fine zone is the ellipse (x/zx)^2 + (y/zy)^2 <= 1 on the
+    top face (and the same half-ellipsoid below it); outside, h = h_contact + grading * distance, capped."""
+
+    length_x: float
+    length_y: float
+    depth: float
+    zone_x: float
+    zone_y: float
+    h_contact: float
+    grading: float
+    h_max: float
+
+    def digest(self) -> str:
+        return hashlib.sha256(json.dumps(asdict(self), sort_keys=True).encode()).hexdigest()[:16]
+
+
+@dataclass
+class TetMesh:
+    """Linear tetrahedra: ``points`` (3, N) m, ``tets`` (4, M); ``top`` (3, K): triangles of the face z = 0."""
+
+    points: np.ndarray
+    tets: np.ndarray
+    top: np.ndarray
+    spec: BlockSpec | None = None
+
+    @property
+    def n_nodes(self) -> int:
+        return self.points.shape[1]
+
+
+def block_quarter(spec: BlockSpec, threads: int = 2) -> TetMesh:
+    """Mesh the quarter block of ``spec`` with Gmsh (OCC box, MathEval size field, HXT)."""
+    with _Gmsh("block_quarter", threads) as model:
+        occ = model.occ
+        box = occ.addBox(0.0, 0.0, -spec.depth, spec.length_x, spec.length_y, spec.depth)
+        occ.synchronize()
+        top = [s for _, s in model.getBoundary([(3, box)], oriented=False)
+               if abs(model.occ.getCenterOfMass(2, s)[2]) < 1e-12 * spec.depth]
+        if len(top) != 1:
+            raise RuntimeError("could not identify the top face of the block")
+        # distance from the fine half-ellipsoid, measured in the ellipse's own scaled metric (exact on axes)
+        rho = (f"Sqrt((x/{spec.zone_x!r})^2 + (y/{spec.zone_y!r})^2 + (z/{min(spec.zone_x, spec.zone_y)!r})^2)")
+        dist = f"Max(0, {rho} - 1) * {min(spec.zone_x, spec.zone_y)!r}"
+        f = model.mesh.field
+        size = f.add("MathEval")
+        f.setString(size, "F", f"Min({spec.h_max!r}, {spec.h_contact!r} + {spec.grading!r} * {dist})")
+        f.setAsBackgroundMesh(size)
+        import gmsh
+
+        for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
+            gmsh.option.setNumber(opt, 0)
+        gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+        model.addPhysicalGroup(3, [box], 1)
+        model.addPhysicalGroup(2, top, 2)
+        model.mesh.generate(3)
+        tags, coords, _ = model.mesh.getNodes()
+        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+        index[tags] = np.arange(tags.size)
+        points = coords.reshape(-1, 3).T.copy()
+        _, elem_tags, elem_nodes = model.mesh.getElements(3, box)
+        tets = index[np.asarray(elem_nodes[0], dtype=np.int64)].reshape(-1, 4).T
+        _, _, tri_nodes = model.mesh.getElements(2, top[0])
+        tris = index[np.asarray(tri_nodes[0], dtype=np.int64)].reshape(-1, 3).T
+    # Gmsh keeps unused nodes (e.g. geometry points) out of tets only rarely; drop any so DOFs are all live.
+    used = np.unique(tets)
+    if used.size != points.shape[1]:
+        remap = np.full(points.shape[1], -1, dtype=np.int64)
+        remap[used] = np.arange(used.size)
+        points, tets, tris = points[:, used], remap[tets], remap[tris]
+    return TetMesh(points, tets, tris, spec)
