@@ -37,7 +37,7 @@ def bench(scene: Scene, models: list[str] | None = None,
     scale = prob.profile_scale(scene)
     rows = []
     for label, sweep in prob.bench_sweeps(scene).items():
-        model = label.split("[")[0]          # "bem[mlmi]": the bem model with another back-end, its own rows
+        model = label.split(":")[0]          # "bem:mlmi": the bem model with another back-end, its own rows
         if models and model not in models:
             continue
         for overrides in sweep:

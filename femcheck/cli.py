@@ -185,7 +185,8 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     for col in ["model", "setting", "size", "iterations", "time (s)"] + [f"{q} err" for q in qnames]:
         t.add_column(col)
     for r in rows:
-        setting = ", ".join(f"{k.split('.')[-1]}={v:g}" for k, v in r["setting"].items())
+        setting = ", ".join(f"{k.split('.')[-1]}={v:g}" if isinstance(v, (int, float)) else f"{k.split('.')[-1]}={v}"
+                            for k, v in r["setting"].items())
         errs = [f"{r['err_' + q]:.2e}" if "err_" + q in r else r.get("error", "-") for q in qnames]
         t.add_row(r["model"], setting, str(r.get("size", "-")), str(r.get("iterations", "-")),
                   f"{r['time_s']:.4f}", *errs)

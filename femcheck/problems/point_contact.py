@@ -17,13 +17,12 @@ from ..bem import halfspace
 from ..bem import stress as bem_stress
 from ..errors import ConvergenceError, InputError
 from ..fem import point_contact as fem_point
-from ..materials import Elastic, effective_modulus
+from ..materials import effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem", "fem")
-FEM_MAX_ASPECT = 4.0     # the quarter block is sized on a_x; beyond this the fine zone would be a strip
 MAX_A_OVER_R = 0.1
 
 SCHEMA: dict[str, Key] = {
@@ -95,7 +94,7 @@ REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
             "code": ("fem/point_contact.py", "fem/mesh3d.py", "fem/mesh2d.py", "fem/elasticity3d.py",
-                     "fem/rigid_contact.py", "fem/convergence.py", "problems/point_contact.py", "analytic/hertz.py",
+                     "fem/rigid_contact.py", "fem/convergence.py", "analytic/hertz.py", "geometry/profiles.py",
                      "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }
@@ -202,72 +201,10 @@ def bem(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 
-def fem_settings(scene: Scene) -> fem_point.FEMPointSettings:
-    n = scene.section("numerics")
-    return fem_point.FEMPointSettings(levels=n["fem_levels"], h_contact=n["fem_h_contact"],
-                                      grading=n["fem_grading"], h_max=n["fem_h_max"],
-                                      contact_zone=n["fem_contact_zone"], block=n["fem_block"],
-                                      finite_size_check=n["fem_finite_size_check"])
-
-
-def equivalent_block(params: dict[str, Any]) -> Elastic:
-    """The one elastic body of the FE model: E*(1 - nu^2) with the Poisson's ratio of the flat (body2), or of
-    the ball when the flat is rigid, so that its contact modulus equals the pair's E*."""
-    e_star = effective_modulus(elastic(params, "body1"), elastic(params, "body2"))
-    nu = params["materials.body1.nu"] if params["materials.body2.rigid"] else params["materials.body2.nu"]
-    return Elastic(e_star * (1.0 - nu * nu), nu)
-
-
 def fem(scene: Scene, progress=None) -> ModelResult:
-    """3D FE reference (:mod:`femcheck.fem.point_contact`): quantities Richardson-extrapolated over
-    ``numerics.fem_levels`` >= 3 levels (finest values otherwise); stats carry every level, the error estimates
-    and the finite-size check."""
-    h = _hertz(scene.params)
-    aspect = h.semi_axis_y / h.semi_axis_x
-    if not 1.0 / FEM_MAX_ASPECT <= aspect <= FEM_MAX_ASPECT:
-        raise InputError("models.run", f"fem needs a contact ellipse with b/a in [{1 / FEM_MAX_ASPECT:g}, "
-                         f"{FEM_MAX_ASPECT:g}]; this one has {aspect:.3g}; allowed here: analytic, bem")
-    s = fem_settings(scene)
-    block = equivalent_block(scene.params)
-    gap = gap_function(scene.params)
-    levels = []
-    for k in range(s.levels):
-        if progress:
-            progress(f"FEM level {k + 1}/{s.levels}")
-        levels.append(fem_point.solve_level(gap, block, scene["load.normal"], h.semi_axis_x, h.semi_axis_y, k, s))
-    fine = levels[-1]
-    finest = {q: getattr(fine, q) for q in fem_point.QUANTITIES}
-    stats: dict[str, Any] = {
-        "method": "active_set", "element": f"P{s.order} tetrahedra", "solver": "pyamg SA (rigid-body modes) + CG",
-        "cg_tol": s.cg_tol, "contact_tol": s.contact_tol, "finest": finest,
-        "equivalent_block": {"E": block.E, "nu": block.nu},
-        "block": {"side": s.block * h.semi_axis_x, "depth": s.block * h.semi_axis_x, "model": "quarter"},
-        "levels": [{"h": lv.h, "h_over_a": lv.h / h.semi_axis_x, "n_nodes": lv.n_nodes, "n_dofs": lv.n_dofs,
-                    "n_elements": lv.n_elements, "mesh_digest": lv.mesh_digest,
-                    **{q: getattr(lv, q) for q in fem_point.QUANTITIES},
-                    "p_max_nodal": lv.p_max_nodal, "approach": lv.approach, "active_nodes": lv.active_nodes,
-                    "iterations": lv.iterations, "cg_iterations": lv.cg_iterations, "residual": lv.residual,
-                    "total_force": lv.total_force, "time_s": lv.time_s, **lv.times} for lv in levels],
-    }
-    q = dict(finest)
-    if s.levels >= 3:
-        rich = {name: fem_point.extrapolate(levels, name) for name in fem_point.QUANTITIES}
-        stats["richardson"] = {k: v.as_dict() for k, v in rich.items()}
-        q = {k: v.value for k, v in rich.items()}
-    if s.finite_size_check:
-        if progress:
-            progress("FEM finite-size check (coarsest level, block x 2)")
-        # on the second level: the coarsest is too coarse to tell the block size from mesh scatter (at a/4 the
-        # two meshes differed by 1 % on p_max; at a/16 blocks of 20a, 40a and 80a agree within 0.1 %)
-        k = min(1, s.levels - 1)
-        big = fem_point.solve_level(gap, block, scene["load.normal"], h.semi_axis_x, h.semi_axis_y, k, s,
-                                    block_scale=2.0)
-        stats["finite_size"] = {qn: getattr(big, qn) / getattr(levels[k], qn) - 1.0 for qn in fem_point.QUANTITIES}
-        stats["finite_size"].update({"level": k, "block_side": 2 * s.block * h.semi_axis_x, "time_s": big.time_s})
-    q["contact_area"] = float(np.pi * q["semi_axis_x"] * q["semi_axis_y"])
-    q["total_force"] = fine.total_force
-    fields = {"x": fine.x, "pressure": fine.p, "pressure_nodes": fine.pressure_nodes}
-    return ModelResult("fem", quantities=q, stats=stats, fields=fields)
+    """3D FE reference, :func:`femcheck.fem.point_contact.model` (kept there whole, so that the stored
+    references depend on the FE code only)."""
+    return fem_point.model(scene.params, progress)
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem}
@@ -312,5 +249,5 @@ def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
     mlmi = [{"numerics.bem_cells": n, "numerics.bem_convolution": "mlmi"} for n in (17, 33, 65, 129, 257)]
     h = _hertz(scene.params)
     if 0.5 <= h.semi_axis_y / h.semi_axis_x <= 2.0:
-        return {"bem": dcfft, "bem[mlmi]": mlmi}
+        return {"bem": dcfft, "bem:mlmi": mlmi}
     return {"bem": dcfft}

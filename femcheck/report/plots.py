@@ -104,7 +104,8 @@ def fem_convergence(run: RunResult, path: Path) -> str | None:
     h = np.array([lv["h_over_a"] for lv in levels])
     fig, ax = plt.subplots(figsize=(5.6, 3.9))
     ref = run.models.get("analytic")
-    for q, colour in (("p_max", "tab:blue"), ("half_width", "tab:orange")):
+    colours = ("tab:blue", "tab:orange", "tab:green", "tab:red")
+    for q, colour in zip(m.stats["richardson"], colours):
         vals = np.array([lv[q] for lv in levels])
         rich = m.stats["richardson"][q]
         if rich["order"] is not None:      # no asymptotic order: there is no extrapolated value to show

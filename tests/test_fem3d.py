@@ -1,0 +1,122 @@
+"""3D FE engine: assembly and AMG-CG against an exact linear solution, tributary areas, the rigid-indenter
+active set against Hertz, and the stored certified reference of the shipped hertz-point scene."""
+import numpy as np
+import pytest
+
+from femcheck import cache, references
+from femcheck.analytic.hertz import point_contact
+from femcheck.errors import InputError
+from femcheck.fem.elasticity3d import AMGElasticity, make_solid, rigid_body_modes
+from femcheck.fem.mesh3d import BlockSpec, block_quarter
+from femcheck.fem.point_contact import tributary_areas
+from femcheck.materials import Elastic
+from femcheck.problems import problem
+from femcheck.result import ModelResult
+from femcheck.scene import load_scene
+
+SPEC = BlockSpec(2.0, 1.5, 1.0, 0.3, 0.3, 0.08, 0.5, 0.4)
+
+
+@pytest.fixture(scope="module")
+def small_block():
+    return block_quarter(SPEC)
+
+
+def test_tributary_areas_sum_to_the_top_face(small_block):
+    w = tributary_areas(small_block)
+    assert w.sum() == pytest.approx(SPEC.length_x * SPEC.length_y, rel=1e-12)
+    assert np.all(w[np.abs(small_block.points[2]) > 1e-12] == 0.0)
+
+
+def test_rigid_body_modes_have_zero_strain_energy(small_block):
+    solid = make_solid(small_block, Elastic(200e9, 0.3))
+    B = rigid_body_modes(solid.basis.doflocs[:, ::3])
+    energy = np.einsum("ij,ij->j", B, solid.K @ B)
+    assert np.abs(energy).max() < 1e-6 * abs(solid.K.diagonal()).max()
+
+
+def test_amg_cg_reproduces_uniaxial_compression_exactly(small_block):
+    # Top pressed down by d, bottom on rollers (u_z = 0), symmetry planes on rollers: the exact solution is
+    # linear (u_z = -d (z + H)/H, lateral expansion nu d/H x), which P1 reproduces to solver precision.
+    E, nu, d, H = 200e9, 0.3, 1e-5, SPEC.depth
+    solid = make_solid(small_block, Elastic(E, nu))
+    X = solid.basis.doflocs
+    tiny = 1e-9
+    fixed = np.zeros(solid.n_dofs, dtype=bool)
+    fixed[0::3] |= X[0, 0::3] < tiny
+    fixed[1::3] |= X[1, 1::3] < tiny
+    fixed[2::3] |= X[2, 2::3] < -H + tiny
+    free = np.flatnonzero(~fixed)
+    top_z = np.flatnonzero(np.isin(np.arange(solid.n_dofs), free) & (np.arange(solid.n_dofs) % 3 == 2)
+                           & (np.abs(X[2]) < tiny))
+    pos = np.full(solid.n_dofs, -1)
+    pos[free] = np.arange(free.size)
+    solver = AMGElasticity(solid, free, tol=1e-12)
+    u, info = solver.solve(np.zeros(free.size), pos[top_z], np.full(top_z.size, -d))
+    exact = np.zeros(solid.n_dofs)
+    exact[0::3] = nu * d / H * X[0, 0::3]
+    exact[1::3] = nu * d / H * X[1, 1::3]
+    exact[2::3] = -d * (X[2, 2::3] + H) / H
+    assert np.abs(u - exact[free]).max() < 1e-9 * d
+    assert info.iterations < 60                             # measured 20-30: the AMG hierarchy works
+    # reaction: sigma_zz = -E d / H over the top face
+    reaction = -(solver.A @ u)[pos[top_z]].sum()
+    assert reaction == pytest.approx(E * d / H * SPEC.length_x * SPEC.length_y, rel=1e-9)
+
+
+TWO_LEVELS = {"numerics.fem_levels": 2, "numerics.fem_finite_size_check": False}
+
+
+def test_two_fem_levels_approach_hertz(femcheck_run):
+    # the reference's two coarser levels (a/8, a/16 in the contact; about 8 s). Issue 4 asks the finest level
+    # of a reference to be within 3 % of Hertz; the extrapolated certified reference (to a/32) is checked
+    # against 1 % below. Semi-axes from the p^2 fit converge faster (measured 0.6 % at a/16).
+    res = femcheck_run("hertz-point", TWO_LEVELS, models=["analytic", "fem"])
+    fem, ref = res.models["fem"], res.models["analytic"].quantities
+    assert fem.status == "ok", fem.error
+    assert fem.quantities["p_max"] == pytest.approx(ref["p_max"], rel=0.03)
+    for q in ("semi_axis_x", "semi_axis_y"):
+        assert fem.quantities[q] == pytest.approx(ref[q], rel=0.01)
+    coarse, fine = fem.stats["levels"]
+    assert abs(fine["p_max"] / ref["p_max"] - 1) < abs(coarse["p_max"] / ref["p_max"] - 1)
+    assert fem.quantities["total_force"] == pytest.approx(1000.0, rel=1e-9)
+    levels = fem.stats["levels"]
+    assert [lv["n_nodes"] for lv in levels] == sorted(lv["n_nodes"] for lv in levels)
+    assert all(lv["residual"] < 1e-8 for lv in levels)
+
+
+def test_fem_refuses_elongated_contacts():
+    sc = load_scene("hertz-elliptic")
+    with pytest.raises(InputError, match="models.run"):
+        problem(sc.kind).MODELS["fem"](sc)
+
+
+def test_shipped_hertz_point_reference_is_current_and_certified():
+    # The stored reference must match the current FEM code and inputs (else suites would solve again): if
+    # this fails after a change to the FEM code, regenerate it with `femcheck run hertz-point --rebuild`.
+    sc = load_scene("hertz-point")
+    dep = problem(sc.kind).DEPENDS["fem"]
+    key = cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"])
+    ref = references.load(sc.kind, "fem", key)
+    assert ref is not None, "references/ has no entry for the current FEM code; run femcheck run hertz-point"
+    hz = point_contact(sc["load.normal"], sc["geometry.radius"], 210e9 / (2 * (1 - 0.3**2)))
+    # issue 4: extrapolated within 1 %, finest level within 3 %, fine reference < 5 min
+    for q, exact in (("p_max", hz.p_max), ("semi_axis_x", hz.semi_axis_x), ("semi_axis_y", hz.semi_axis_y)):
+        assert ref.quantities[q] == pytest.approx(exact, rel=0.01)
+        assert ref.stats["finest"][q] == pytest.approx(exact, rel=0.03)
+    assert len(ref.stats["levels"]) >= 3
+    assert abs(ref.stats["finite_size"]["p_max"]) < 0.01
+    assert ref.stats["reference"]["run_time_s"] < 300
+
+
+def test_reference_round_trip_and_key_mismatch(tmp_path, monkeypatch):
+    monkeypatch.setenv("FEMCHECK_REFERENCES", str(tmp_path))
+    res = ModelResult("fem", "ok", 1.5, {"p_max": 2.0e9}, {"levels": [1, 2, 3]}, {"x": np.arange(3.0)})
+    path = references.store("point_contact", "fem", "a" * 32, res, "demo", {"load.normal": 1.0})
+    assert path is not None and path.is_file()
+    back = references.load("point_contact", "fem", "a" * 32)
+    assert back.quantities == {"p_max": 2.0e9} and back.cached
+    np.testing.assert_array_equal(back.fields["x"], np.arange(3.0))
+    assert back.stats["reference"]["params"] == {"load.normal": 1.0}
+    # same 16-character file prefix, different full key: not this reference
+    assert references.load("point_contact", "fem", "a" * 16 + "b" * 16) is None
