@@ -75,5 +75,6 @@ def store(kind: str, model: str, key: str, res: ModelResult, scene_name: str, pa
         fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
         with os.fdopen(fd, "wb") as fh:
             write(fh)
+        os.chmod(tmp, 0o644)                   # mkstemp makes it private; a reference is meant to be shared
         os.replace(tmp, path)
     return meta_path

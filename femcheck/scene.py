@@ -86,6 +86,24 @@ class Key:
 
 # Keys every problem kind shares. Materials: E > 0, -1 < nu < 0.5 (thermodynamic bounds; 0.5 itself is
 # refused because the plane-strain stiffness and the FE Lame constant lambda are then infinite).
+def fem_mesh_keys(levels_hi: int, h_contact_lo: float, h_contact_hi: float, h_max_hi: float, zone_doc: str,
+                  zone_hi: float, block_unit: str, block_doc: str, block_lo: float, block_hi: float) -> dict[str, Key]:
+    """The mesh-family keys shared by the 3D FE models (sizes of the coarsest level; each level halves them)."""
+    return {
+        "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson extrapolation)", lo=1,
+                                   hi=levels_hi, lo_closed=True, hi_closed=True),
+        "numerics.fem_h_contact": Key("float", "a_H", "FEM element size over the contact zone, coarsest level",
+                                      lo=h_contact_lo, hi=h_contact_hi, lo_closed=True, hi_closed=True),
+        "numerics.fem_grading": Key("float", "-", "FEM element growth per unit distance, coarsest level", lo=0.0,
+                                    hi=2.0, hi_closed=True),
+        "numerics.fem_h_max": Key("float", "a_H", "largest FEM element, coarsest level", lo=0.05, hi=h_max_hi,
+                                  hi_closed=True),
+        "numerics.fem_contact_zone": Key("float", "a_H", zone_doc, lo=1.05, hi=zone_hi, hi_closed=True),
+        "numerics.fem_block": Key("float", block_unit, block_doc, lo=block_lo, hi=block_hi, lo_closed=True,
+                                  hi_closed=True),
+    }
+
+
 def material_keys(body: str) -> dict[str, Key]:
     return {
         f"materials.{body}.E": Key("float", "Pa", f"Young's modulus of the {body}", lo=0.0),

@@ -10,8 +10,12 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
+import tempfile
 from dataclasses import asdict, dataclass
+from pathlib import Path
 
+import meshio
 import numpy as np
 
 from .mesh2d import _Gmsh
@@ -20,7 +24,9 @@ from .mesh2d import _Gmsh
 @dataclass(frozen=True)
 class BlockSpec:
     """Quarter block and its sizing, lengths in m. The fine zone is the ellipse (x/zx)^2 + (y/zy)^2 <= 1 on the
-    top face (and the same half-ellipsoid below it); outside, h = h_contact + grading * distance, capped."""
+    top face and the half-ellipsoid below it of depth min(zx, zy) (``zone = "ellipse"``), or the box
+    [0, zx] x [0, zy] x [-min(zx, zy), 0] (``zone = "box"``, for a roller); outside, h = h_contact + grading *
+    distance, capped at h_max."""
 
     length_x: float
     length_y: float
@@ -30,6 +36,7 @@ class BlockSpec:
     h_contact: float
     grading: float
     h_max: float
+    zone: str = "ellipse"
 
     def digest(self) -> str:
         return hashlib.sha256(json.dumps(asdict(self), sort_keys=True).encode()).hexdigest()[:16]
@@ -63,9 +70,14 @@ def block_quarter(spec: BlockSpec, threads: int = 1) -> TetMesh:
                if abs(model.occ.getCenterOfMass(2, s)[2]) < 1e-12 * spec.depth]
         if len(top) != 1:
             raise RuntimeError("could not identify the top face of the block")
-        # distance from the fine half-ellipsoid, measured in the ellipse's own scaled metric (exact on axes)
-        rho = (f"Sqrt((x/{spec.zone_x!r})^2 + (y/{spec.zone_y!r})^2 + (z/{min(spec.zone_x, spec.zone_y)!r})^2)")
-        dist = f"Max(0, {rho} - 1) * {min(spec.zone_x, spec.zone_y)!r}"
+        zz = min(spec.zone_x, spec.zone_y)
+        if spec.zone == "box":
+            dist = (f"Sqrt(Max(0, x - {spec.zone_x!r})^2 + Max(0, y - {spec.zone_y!r})^2 "
+                    f"+ Max(0, -z - {zz!r})^2)")
+        else:
+            # distance from the fine half-ellipsoid, in the ellipse's own scaled metric (exact on the axes)
+            rho = f"Sqrt((x/{spec.zone_x!r})^2 + (y/{spec.zone_y!r})^2 + (z/{zz!r})^2)"
+            dist = f"Max(0, {rho} - 1) * {zz!r}"
         f = model.mesh.field
         size = f.add("MathEval")
         f.setString(size, "F", f"Min({spec.h_max!r}, {spec.h_contact!r} + {spec.grading!r} * {dist})")
@@ -93,3 +105,31 @@ def block_quarter(spec: BlockSpec, threads: int = 1) -> TetMesh:
         remap[used] = np.arange(used.size)
         points, tets, tris = points[:, used], remap[tets], remap[tris]
     return TetMesh(points, tets, tris, spec)
+
+
+def mesh_cache_dir() -> Path:
+    from ..cache import cache_dir
+
+    return cache_dir() / "meshes"
+
+
+def cached_block_quarter(spec: BlockSpec) -> TetMesh:
+    """:func:`block_quarter`, meshed once per spec: stored as ``<cache>/meshes/<digest>.vtu`` (tetrahedra and
+    the top-face triangles) through meshio and read back on the next call."""
+    path = mesh_cache_dir() / f"block-{spec.digest()}.vtu"
+    if path.is_file():
+        try:
+            m = meshio.read(path)
+            tets = np.asarray(m.cells_dict["tetra"], dtype=np.int64).T
+            top = np.asarray(m.cells_dict["triangle"], dtype=np.int64).T
+            return TetMesh(np.ascontiguousarray(m.points.T), np.ascontiguousarray(tets), np.ascontiguousarray(top),
+                           spec)
+        except (OSError, KeyError, ValueError):
+            pass                                        # a damaged entry is meshed again
+    mesh = block_quarter(spec)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".vtu")
+    os.close(fd)
+    meshio.write(tmp, meshio.Mesh(mesh.points.T, [("tetra", mesh.tets.T), ("triangle", mesh.top.T)]))
+    os.replace(tmp, path)
+    return mesh

@@ -14,7 +14,6 @@ solve of the coarsest level on a block twice as large.
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -27,17 +26,18 @@ from ..materials import Elastic, effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
 from .convergence import Extrapolation, richardson
-from .elasticity3d import AMGElasticity, make_solid
-from .mesh3d import BlockSpec, TetMesh, block_quarter
-from .rigid_contact import active_set
+from . import export
+from .mesh3d import BlockSpec, TetMesh
+from .quarter_block import solve_quarter
 
 Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 
 @dataclass(frozen=True)
 class FEMPointSettings:
-    """Lengths in Hertz semi-axes a_x. Level k (0 = coarsest) has contact element size h_contact 2^-k inside
-    the zone of ``contact_zone`` semi-axes, grading ``grading`` 2^-k and cap ``h_max`` 2^-k."""
+    """Element sizes in the short Hertz semi-axis, the block and the size cap in the long one. Level k
+    (0 = coarsest) has contact element size h_contact 2^-k inside the zone of ``contact_zone`` semi-axes,
+    grading ``grading`` 2^-k and cap ``h_max`` 2^-k; the block is ``block`` long semi-axes on each side."""
 
     levels: int = 3
     h_contact: float = 0.125
@@ -49,6 +49,9 @@ class FEMPointSettings:
     cg_tol: float = 1e-10
     contact_tol: float = 1e-8
     finite_size_check: bool = True
+    method: str = "active_set"
+    solver: str = "auto"
+    penalty_factor: float = 1e3
 
 
 @dataclass
@@ -68,78 +71,51 @@ class FEMPointLevel:
     cg_iterations: list[int]
     residual: float
     mesh_digest: str
+    solver: str
+    penetration: float
     time_s: float
     times: dict[str, float]
     x: np.ndarray          # contact-face nodes on the x axis (m) and their pressures (Pa), for profiles
     p: np.ndarray
     mesh: TetMesh | None = None
     pressure_nodes: np.ndarray | None = None    # (x, y, p) of every candidate node
-
-
-def tributary_areas(mesh: TetMesh) -> np.ndarray:
-    """w_i = int phi_i dA over the face z = 0 (m^2) for P1: a third of each adjacent triangle's area."""
-    P, tri = mesh.points, mesh.top
-    e1, e2 = P[:, tri[1]] - P[:, tri[0]], P[:, tri[2]] - P[:, tri[0]]
-    area = 0.5 * np.linalg.norm(np.cross(e1.T, e2.T), axis=1)
-    w = np.zeros(P.shape[1])
-    np.add.at(w, tri.ravel(), np.tile(area / 3.0, 3))
-    return w
+    u_nodes: np.ndarray | None = None           # (3, N) displacement of every node (m)
+    pressure_all: np.ndarray | None = None      # (N,) contact pressure at every node (Pa), 0 off the patch
 
 
 def solve_level(gap: Gap, block: Elastic, force: float, ax: float, ay: float, level: int, s: FEMPointSettings,
-                block_scale: float = 1.0, threads: int = 1) -> FEMPointLevel:
+                block_scale: float = 1.0) -> FEMPointLevel:
     """One mesh level. ``gap(x, y)`` initial gap (m), ``block`` the equivalent elastic body, ``force`` the
     total load (N; the quarter model carries a quarter), ``ax``, ``ay`` Hertz semi-axes (m) for sizing."""
-    t0 = time.perf_counter()
-    times = {}
     f = 2.0**-level
-    L = s.block * ax * block_scale
-    spec = BlockSpec(L, L, L, s.contact_zone * ax, s.contact_zone * ay, s.h_contact * ax * f, s.grading * f,
-                     s.h_max * ax * f)
-    mesh = block_quarter(spec, threads)
-    times["mesh_s"] = time.perf_counter() - t0
-    t = time.perf_counter()
-    solid = make_solid(mesh, block, s.order)
-    times["assembly_s"] = time.perf_counter() - t
-    X = solid.basis.doflocs
-    tiny = 1e-9 * L
-    fixed = X[2] < -L + tiny                          # clamped bottom
-    fixed[0::3] |= X[0, 0::3] < tiny                  # symmetry x = 0: u_x = 0
-    fixed[1::3] |= X[1, 1::3] < tiny                  # symmetry y = 0: u_y = 0
-    free = np.flatnonzero(~fixed)
-    t = time.perf_counter()
-    solver = AMGElasticity(solid, free, tol=s.cg_tol)
-    times["amg_setup_s"] = time.perf_counter() - t
-    position = np.full(solid.n_dofs, -1)
-    position[free] = np.arange(free.size)
-    top = np.unique(mesh.top)
-    xt, yt = mesh.points[0, top], mesh.points[1, top]
-    cand = top[(xt / (s.contact_zone * ax)) ** 2 + (yt / (s.contact_zone * ay)) ** 2 <= 1.0]
-    xc, yc = mesh.points[0, cand], mesh.points[1, cand]
-    h = gap(xc, yc)
-    t = time.perf_counter()
-    sol = active_set(solver, position[3 * cand + 2], h, 0.25 * force, (xc / ax) ** 2 + (yc / ay) ** 2 < 1.0,
-                     tol=s.contact_tol)
-    times["contact_s"] = time.perf_counter() - t
-    rim = (xc / (s.contact_zone * ax)) ** 2 + (yc / (s.contact_zone * ay)) ** 2 > 0.9
-    if sol.active[rim].any():
-        raise RuntimeError("FEM contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
-    p = sol.lam / tributary_areas(mesh)[cand]
+    big = max(ax, ay)
+    L = s.block * big * block_scale
+    zx, zy = s.contact_zone * ax, s.contact_zone * ay
+    # an elongated patch gets a box-shaped fine zone: the ellipse's scaled distance would grade far too slowly
+    # along its long axis
+    zone = "ellipse" if big <= 2.0 * min(ax, ay) else "box"
+    spec = BlockSpec(L, L, L, zx, zy, s.h_contact * min(ax, ay) * f, s.grading * f, s.h_max * big * f, zone)
+    c = solve_quarter(spec, gap, block, 0.25 * force,
+                      candidates=lambda x, y: (x / zx) ** 2 + (y / zy) ** 2 <= 1.0,
+                      initial=lambda x, y: (x / ax) ** 2 + (y / ay) ** 2 < 1.0,
+                      rim=lambda x, y: (x / zx) ** 2 + (y / zy) ** 2 > 0.9, cg_tol=s.cg_tol, contact_tol=s.contact_tol,
+                      method=s.method, solver=s.solver, penalty_factor=s.penalty_factor)
     # Nodal reactions of P1 tetrahedra scatter node to node on an unstructured face (+-2 % at a/16), so the
     # peak and the semi-axes come from a least-squares fit of p^2 (exact for Hertz) over the quarter mirrored
     # to the full patch; the largest nodal value is kept in the stats.
-    XX, YY, PP = (np.concatenate([xc, -xc, xc, -xc]), np.concatenate([yc, yc, -yc, -yc]), np.tile(p, 4))
-    fit = ellipse_fit(XX, YY, PP)
+    xc, yc = c.xc, c.yc
+    fit = ellipse_fit(np.concatenate([xc, -xc, xc, -xc]), np.concatenate([yc, yc, -yc, -yc]), np.tile(c.p, 4))
     axis = np.flatnonzero(np.abs(yc) < 1e-9 * L)
     order = np.argsort(xc[axis])
-    return FEMPointLevel(h=s.h_contact * ax * f, p_max=fit["peak"], semi_axis_x=fit["semi_axis_x"],
-                         semi_axis_y=fit["semi_axis_y"], p_max_nodal=float(p.max()), approach=sol.delta,
-                         total_force=4.0 * float(sol.lam.sum()), n_nodes=mesh.n_nodes, n_dofs=int(free.size),
-                         n_elements=int(mesh.tets.shape[1]), active_nodes=int(sol.active.sum()),
-                         iterations=sol.iterations, cg_iterations=sol.cg_iterations, residual=sol.residual,
-                         mesh_digest=spec.digest(), time_s=time.perf_counter() - t0, times=times,
-                         x=xc[axis][order], p=p[axis][order], mesh=mesh,
-                         pressure_nodes=np.stack([xc, yc, p]))
+    return FEMPointLevel(h=s.h_contact * min(ax, ay) * f, p_max=fit["peak"], semi_axis_x=fit["semi_axis_x"],
+                         semi_axis_y=fit["semi_axis_y"], p_max_nodal=float(c.p.max()), approach=c.approach,
+                         total_force=4.0 * float(c.lam.sum()), n_nodes=c.mesh.n_nodes, n_dofs=c.n_dofs,
+                         n_elements=int(c.mesh.tets.shape[1]), active_nodes=c.active_nodes,
+                         iterations=c.iterations, cg_iterations=c.cg_iterations, residual=c.residual,
+                         mesh_digest=spec.digest(), solver=c.solver, penetration=c.penetration, time_s=c.time_s,
+                         times=c.times,
+                         x=xc[axis][order], p=c.p[axis][order], mesh=c.mesh,
+                         pressure_nodes=np.stack([xc, yc, c.p]), u_nodes=c.u_nodes, pressure_all=c.pressure_all)
 
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y")
@@ -149,14 +125,18 @@ def extrapolate(levels: list[FEMPointLevel], quantity: str) -> Extrapolation:
     return richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])
 
 
-MAX_ASPECT = 4.0     # the quarter block is sized on a_x; beyond this the fine zone would be a strip
+# The element size follows the short semi-axis over the whole patch: at b/a = 40 (seed 000's roller) the a/8
+# level has about 50k nodes; beyond b/a = 100 even the coarsest level would not fit the budget.
+MAX_ASPECT = 100.0
 
 
 def settings(params: dict[str, Any]) -> FEMPointSettings:
     return FEMPointSettings(levels=params["numerics.fem_levels"], h_contact=params["numerics.fem_h_contact"],
                             grading=params["numerics.fem_grading"], h_max=params["numerics.fem_h_max"],
                             contact_zone=params["numerics.fem_contact_zone"], block=params["numerics.fem_block"],
-                            finite_size_check=params["numerics.fem_finite_size_check"])
+                            finite_size_check=params["numerics.fem_finite_size_check"],
+                            method=params["numerics.fem_method"], solver=params["numerics.fem_solver"],
+                            penalty_factor=params["numerics.fem_penalty"])
 
 
 def _body(params: dict[str, Any], name: str) -> Elastic:
@@ -165,12 +145,17 @@ def _body(params: dict[str, Any], name: str) -> Elastic:
                    rigid)
 
 
-def equivalent_block(params: dict[str, Any]) -> Elastic:
-    """The one elastic body of the FE model: E*(1 - nu^2) with the Poisson's ratio of the flat (body2), or of
-    the ball when the flat is rigid, so that its contact modulus equals the pair's E*."""
-    e_star = effective_modulus(_body(params, "body1"), _body(params, "body2"))
-    nu = params["materials.body1.nu"] if params.get("materials.body2.rigid", False) else params["materials.body2.nu"]
+def equivalent_pair(body1: Elastic, body2: Elastic) -> Elastic:
+    """The one elastic body that stands for a frictionless pair: E*(1 - nu^2) with the Poisson's ratio of
+    ``body2`` (of ``body1`` when body2 is rigid), so that its contact modulus equals the pair's E*."""
+    e_star = effective_modulus(body1, body2)
+    nu = body1.nu if body2.rigid else body2.nu
     return Elastic(e_star * (1.0 - nu * nu), nu)
+
+
+def equivalent_block(params: dict[str, Any]) -> Elastic:
+    """:func:`equivalent_pair` of the ball (body1) and the flat (body2)."""
+    return equivalent_pair(_body(params, "body1"), _body(params, "body2"))
 
 
 def model(params: dict[str, Any], progress=None) -> ModelResult:
@@ -198,15 +183,18 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
     fine = levels[-1]
     finest = {q: getattr(fine, q) for q in QUANTITIES}
     stats: dict[str, Any] = {
-        "method": "active_set", "element": f"P{s.order} tetrahedra", "solver": "pyamg SA (rigid-body modes) + CG",
+        "method": s.method, "element": f"P{s.order} tetrahedra",
+        "solver": "auto: sparse LU up to 3000 DOFs, pyamg SA (rigid-body modes) + CG above" if s.solver == "auto"
+        else s.solver,
         "cg_tol": s.cg_tol, "contact_tol": s.contact_tol, "finest": finest,
         "equivalent_block": {"E": block.E, "nu": block.nu},
-        "block": {"side": s.block * ax, "depth": s.block * ax, "model": "quarter"},
-        "levels": [{"h": lv.h, "h_over_a": lv.h / ax, "n_nodes": lv.n_nodes, "n_dofs": lv.n_dofs,
+        "block": {"side": s.block * max(ax, ay), "depth": s.block * max(ax, ay), "model": "quarter"},
+        "levels": [{"h": lv.h, "h_over_a": lv.h / min(ax, ay), "n_nodes": lv.n_nodes, "n_dofs": lv.n_dofs,
                     "n_elements": lv.n_elements, "mesh_digest": lv.mesh_digest,
                     **{q: getattr(lv, q) for q in QUANTITIES},
                     "p_max_nodal": lv.p_max_nodal, "approach": lv.approach, "active_nodes": lv.active_nodes,
                     "iterations": lv.iterations, "cg_iterations": lv.cg_iterations, "residual": lv.residual,
+                    "linear_solver": lv.solver, "penetration": lv.penetration,
                     "total_force": lv.total_force, "time_s": lv.time_s, **lv.times} for lv in levels],
     }
     q = dict(finest)
@@ -222,8 +210,10 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         k = min(1, s.levels - 1)
         big = solve_level(gap, block, load, ax, ay, k, s, block_scale=2.0)
         stats["finite_size"] = {qn: getattr(big, qn) / getattr(levels[k], qn) - 1.0 for qn in QUANTITIES}
-        stats["finite_size"].update({"level": k, "block_side": 2 * s.block * ax, "time_s": big.time_s})
+        stats["finite_size"].update({"level": k, "block_side": 2 * s.block * max(ax, ay), "time_s": big.time_s})
     q["contact_area"] = float(np.pi * q["semi_axis_x"] * q["semi_axis_y"])
     q["total_force"] = fine.total_force
     fields = {"x": fine.x, "pressure": fine.p, "pressure_nodes": fine.pressure_nodes}
+    fields.update(export.report_views(fine.mesh, fine.u_nodes, fine.pressure_all, block, f"point-{fine.mesh_digest}",
+                                      (2.0 * ax, 2.0 * ay, 2.0 * min(ax, ay)), stats))
     return ModelResult("fem", quantities=q, stats=stats, fields=fields)

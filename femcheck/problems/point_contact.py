@@ -20,7 +20,7 @@ from ..fem import point_contact as fem_point
 from ..materials import effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1
@@ -48,18 +48,13 @@ SCHEMA: dict[str, Key] = {
                                     choices=halfspace.CONVOLUTIONS),
     "numerics.bem_warm_levels": Key("int", "-", "coarser grids solved first as a warm start", lo=0, hi=8,
                                     lo_closed=True, hi_closed=True),
-    "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson extrapolation)", lo=1, hi=5,
-                               lo_closed=True, hi_closed=True),
-    "numerics.fem_h_contact": Key("float", "a_H", "FEM element size in the contact zone, coarsest level",
-                                  lo=0.005, hi=0.5, lo_closed=True, hi_closed=True),
-    "numerics.fem_grading": Key("float", "-", "FEM element growth per unit distance, coarsest level", lo=0.0,
-                                hi=2.0, hi_closed=True),
-    "numerics.fem_h_max": Key("float", "a_H", "largest FEM element, coarsest level", lo=0.05, hi=20.0,
-                              hi_closed=True),
-    "numerics.fem_contact_zone": Key("float", "a_H", "FEM contact candidate zone / Hertz semi-axes", lo=1.05,
-                                     hi=3.0, hi_closed=True),
-    "numerics.fem_block": Key("float", "a_H", "FEM block side and depth / Hertz semi-axis x", lo=5.0, hi=200.0,
-                              lo_closed=True, hi_closed=True),
+    **fem_mesh_keys(5, 0.005, 0.5, 20.0, "FEM contact candidate zone / Hertz semi-axes", 3.0, "a_H",
+                    "FEM block side and depth / long Hertz semi-axis", 5.0, 200.0),
+    "numerics.fem_method": Key("str", "-", "FEM contact algorithm", choices=("active_set", "penalty")),
+    "numerics.fem_solver": Key("str", "-", "FEM linear solver (auto: LU up to 3000 DOFs, AMG-CG above)",
+                               choices=("auto", "direct", "amg")),
+    "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E' tributary area / element size)", lo=1.0,
+                                hi=1e8, lo_closed=True, hi_closed=True),
     "numerics.fem_finite_size_check": Key("bool", "-", "solve the coarsest FEM level again on a block twice as "
                                           "large and report the change"),
     "numerics.stress_depths": Key("int", "-", "depth levels of the stress field", lo=4, hi=400,
@@ -87,15 +82,18 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_contact_zone": 1.3,
     "numerics.fem_block": 20.0,
     "numerics.fem_finite_size_check": True,
+    "numerics.fem_method": "active_set",
+    "numerics.fem_solver": "auto",
+    "numerics.fem_penalty": 1e3,
     "numerics.stress_depths": 40,
     "numerics.stress_depth_max": 1.5,
 }
 REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-            "code": ("fem/point_contact.py", "fem/mesh3d.py", "fem/mesh2d.py", "fem/elasticity3d.py",
-                     "fem/rigid_contact.py", "fem/convergence.py", "analytic/hertz.py", "geometry/profiles.py",
-                     "qoi.py", "materials.py", "result.py"),
+            "code": ("fem/point_contact.py", "fem/quarter_block.py", "fem/mesh3d.py", "fem/mesh2d.py",
+                     "fem/elasticity3d.py", "fem/rigid_contact.py", "fem/convergence.py", "fem/export.py",
+                     "analytic/hertz.py", "geometry/profiles.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }
 

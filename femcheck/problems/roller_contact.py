@@ -17,12 +17,13 @@ from ..analytic import hertz
 from ..bem import finite_line as finite_line_method
 from ..bem import halfspace
 from ..errors import ConvergenceError, InputError
+from ..fem import roller_contact as fem_roller
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, tolerance_key
 
-MODEL_NAMES = ("analytic", "bem", "finite_line")
+MODEL_NAMES = ("analytic", "bem", "finite_line", "fem")
 
 SCHEMA: dict[str, Key] = {
     "geometry.radius": Key("float", "m", "roller radius", lo=0.0),
@@ -53,6 +54,8 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
     "numerics.finite_line_elements": Key("int", "-", "finite-line elements along the roller (even)", lo=4,
                                          hi=1024, lo_closed=True, hi_closed=True),
+    **fem_mesh_keys(4, 0.02, 1.0, 500.0, "FEM candidate zone across / Hertz half-width", 5.0, "L",
+                    "FEM block beyond the footprint / roller length", 0.5, 20.0),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -61,7 +64,7 @@ DEFAULTS: dict[str, Any] = {
     "geometry.tilt": 0.0,
     "materials.roller.rigid": False,
     "materials.race.rigid": False,
-    "models.run": list(MODEL_NAMES),
+    "models.run": ["analytic", "bem", "finite_line"],
     "models.references": ["bem"],
     "numerics.bem_nx": 33,
     "numerics.bem_ny": 129,
@@ -69,9 +72,21 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_margin_y": 0.05,
     "numerics.bem_tol": 1e-10,
     "numerics.finite_line_elements": 64,
+    "numerics.fem_levels": 2,
+    "numerics.fem_h_contact": 0.25,
+    "numerics.fem_grading": 0.25,
+    "numerics.fem_h_max": 40.0,
+    "numerics.fem_contact_zone": 1.8,      # the footprint widens at sharp roller ends (dog-bone)
+    "numerics.fem_block": 2.0,
 }
 REQUIRED = ("geometry.radius", "geometry.length", "load.normal")
-DEPENDS: dict[str, dict] = {}
+DEPENDS: dict[str, dict] = {
+    "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
+            "code": ("fem/roller_contact.py", "fem/point_contact.py", "fem/quarter_block.py", "fem/mesh3d.py",
+                     "fem/mesh2d.py", "fem/elasticity3d.py", "fem/rigid_contact.py", "fem/convergence.py",
+                     "fem/export.py", "analytic/hertz.py", "geometry/profiles.py", "materials.py", "result.py"),
+            "reference": True},
+}
 
 
 def modulus(params: dict[str, Any]) -> float:
@@ -193,7 +208,13 @@ def finite_line(scene: Scene, progress=None) -> ModelResult:
                                "pressure_axial": r.p_m})
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "finite_line": finite_line}
+def fem(scene: Scene, progress=None) -> ModelResult:
+    """3D FE reference, :func:`femcheck.fem.roller_contact.model`."""
+    return fem_roller.model(scene.params, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "finite_line": finite_line,
+                                                "fem": fem}
 
 
 def load_of(scene: Scene) -> float:

@@ -13,7 +13,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from .. import __version__
 from ..result import RunResult
-from . import plots
+from . import pictures, plots
 
 
 def _fmt(v: Any) -> str:
@@ -69,6 +69,7 @@ def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float)
                 name = fn(r, tmp / f"{i:02d}-{r.scene}-{key}.png")
                 if name:
                     figs[key] = name
+            figs.update(pictures.fem_views(r, tmp, f"{i:02d}-{r.scene}"))
             scenes.append({"run": r, "figs": figs})
         data = summary(runs, title, elapsed_s)
         (tmp / "summary.json").write_text(json.dumps(data, indent=1))

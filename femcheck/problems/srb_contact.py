@@ -1,0 +1,158 @@
+"""Frictionless normal contact of a spherical-roller-bearing roller with its inner and outer raceways
+(srb-normal; seed 000, Table 1 and eq 1).
+
+Local geometry at the nominal contact points: the pitch radius r_m = (r_E - D/2) cos(alpha) (seed 000 prints
+"(r_E D/2)": the minus sign is lost; with it the outer rolling radius r_m + (D/2) cos(alpha) equals r_E
+cos(alpha), as the outer raceway is a sphere of radius r_E), the rolling radii r_roll = r_m -/+ (D/2)
+cos(alpha) (eq 1), and the rings' longitudinal curvature radii r_roll / cos(alpha) (seed 000 §2). Relative
+radii of curvature, x rolling, y along the roller axis:
+
+    inner:  1/Rx = 2/D + cos(alpha)/r_roll,I     1/Ry = 1/R - 1/r_I      (convex ring, concave groove)
+    outer:  1/Rx = 2/D - cos(alpha)/r_roll,E     1/Ry = 1/R - 1/r_E      (concave ring and groove)
+
+Both contacts carry the roller's normal load N (radial equilibrium of one roller without centrifugal force,
+as in the frictionless normal problem). Each contact is then a point-contact problem with these radii, solved by
+the point-contact models (:mod:`femcheck.problems.point_contact`): ``analytic`` (elliptic Hertz), ``bem``
+(half-space BEM), ``fem`` (3D FE reference with the equivalent paraboloid on a flat block: the half-space
+geometry of Hertz and the BEM, not the conformal sub-model of the real ring segments). Quantities carry the
+suffix ``_inner`` / ``_outer``.
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from ..result import ModelResult
+from ..scene import Key, Scene, build_scene, check_body_pair, material_keys, tolerance_key
+from . import point_contact
+
+CONTACTS = ("inner", "outer")
+MODEL_NAMES = ("analytic", "bem", "fem")
+
+SCHEMA: dict[str, Key] = {
+    "geometry.roller_diameter": Key("float", "m", "roller nominal diameter D", lo=0.0),
+    "geometry.crown_radius": Key("float", "m", "roller crown radius R", lo=0.0),
+    "geometry.groove_radius_inner": Key("float", "m", "inner-race groove curvature radius r_I (> R)", lo=0.0),
+    "geometry.groove_radius_outer": Key("float", "m", "outer-race groove curvature radius r_E (> R)", lo=0.0),
+    "geometry.contact_angle": Key("float", "rad", "nominal contact angle alpha", lo=0.0, hi=0.8, lo_closed=True,
+                                  hi_closed=True),
+    "load.normal": Key("float", "N", "roller normal load N on each raceway", lo=0.0),
+    **material_keys("roller"),
+    **material_keys("ring"),
+    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
+    "models.references": Key("list", "-", "models every other model is compared against", choices=MODEL_NAMES),
+    **{k: v for k, v in point_contact.SCHEMA.items() if k.startswith("numerics.") and "stress" not in k},
+    "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+}
+DEFAULTS: dict[str, Any] = {
+    "materials.roller.rigid": False,
+    "materials.ring.rigid": False,
+    "models.run": ["analytic", "bem"],
+    "models.references": ["analytic"],
+    **{k: v for k, v in point_contact.DEFAULTS.items() if k.startswith("numerics.") and "stress" not in k},
+}
+REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
+            "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal")
+DEPENDS = {"fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
+                   "code": point_contact.DEPENDS["fem"]["code"] + ("problems/srb_contact.py",),
+                   "reference": True}}
+
+
+def radii(params: dict[str, Any]) -> dict[str, tuple[float, float]]:
+    """(Rx, Ry) in m of the inner and outer contact (see the module docstring)."""
+    D, R, alpha = params["geometry.roller_diameter"], params["geometry.crown_radius"], params["geometry.contact_angle"]
+    r_i, r_e = params["geometry.groove_radius_inner"], params["geometry.groove_radius_outer"]
+    r_m = (r_e - 0.5 * D) * np.cos(alpha)
+    roll_i, roll_e = r_m - 0.5 * D * np.cos(alpha), r_m + 0.5 * D * np.cos(alpha)
+    return {"inner": (1.0 / (2.0 / D + np.cos(alpha) / roll_i), 1.0 / (1.0 / R - 1.0 / r_i)),
+            "outer": (1.0 / (2.0 / D - np.cos(alpha) / roll_e), 1.0 / (1.0 / R - 1.0 / r_e))}
+
+
+def validate(params: dict[str, Any]) -> None:
+    from ..errors import InputError
+
+    check_body_pair(params, ("roller", "ring"))
+    R = params["geometry.crown_radius"]
+    for c in CONTACTS:
+        if params[f"geometry.groove_radius_{c}"] <= R:
+            raise InputError(f"geometry.groove_radius_{c}", f"must exceed the crown radius {R:g} m (a groove "
+                             f"conforming to a barrel roller); allowed ({R:g}, inf) m")
+    if params["geometry.groove_radius_outer"] <= params["geometry.roller_diameter"]:
+        raise InputError("geometry.groove_radius_outer", "must exceed the roller diameter")
+    for c in CONTACTS:
+        point_contact.validate(_contact_params(params, c))
+
+
+def _contact_params(params: dict[str, Any], contact: str) -> dict[str, Any]:
+    rx, ry = radii(params)[contact]
+    out = {k: v for k, v in params.items() if k.startswith(("numerics.", "load."))}
+    out.update({"geometry.Rx": float(rx), "geometry.Ry": float(ry), "geometry.profile": "paraboloid",
+                "outputs.subsurface_stress": False, "models.run": ["analytic"], "models.references": ["analytic"]})
+    for body, src in (("body1", "roller"), ("body2", "ring")):
+        for k in ("E", "nu", "rigid"):
+            if f"materials.{src}.{k}" in params:
+                out[f"materials.{body}.{k}"] = params[f"materials.{src}.{k}"]
+    return out
+
+
+def contact_scene(scene: Scene, contact: str) -> Scene:
+    """The point-contact scene of one raceway contact."""
+    return build_scene(f"{scene.name}:{contact}", "point_contact", scene.description, [],
+                       _contact_params(scene.params, contact))
+
+
+def _both(name: str) -> Callable[..., ModelResult]:
+    def run(scene: Scene, progress=None) -> ModelResult:
+        q, stats, fields = {}, {}, {}
+        for c in CONTACTS:
+            if progress:
+                progress(f"{name}: {c} raceway")
+            res = point_contact.MODELS[name](contact_scene(scene, c), progress)
+            if res.status != "ok":
+                raise RuntimeError(f"{c} raceway: {res.error}")
+            q.update({f"{k}_{c}": v for k, v in res.quantities.items()})
+            stats[c] = res.stats
+            for k in ("x", "pressure"):
+                if k in res.fields:
+                    fields[k if c == "inner" else f"{k}_{c}"] = res.fields[k]
+            if c == "inner":
+                fields.update({k: v for k, v in res.fields.items() if k.startswith("view_")})
+            if "richardson" in res.stats or "finest" in res.stats:
+                stats.setdefault("finest", {}).update({f"{k}_{c}": v for k, v in res.stats.get("finest", {}).items()})
+        if any("levels" in stats[c] for c in CONTACTS):
+            stats["levels"] = [{**lv, "contact": c, "level": k} for c in CONTACTS
+                               for k, lv in enumerate(stats[c].get("levels", []))]
+            stats["level_quantities"] = list(stats[CONTACTS[0]].get("finest", {}))
+        rx = radii(scene.params)
+        stats["radii"] = {c: {"Rx": rx[c][0], "Ry": rx[c][1], "Ry_over_Rx": rx[c][1] / rx[c][0]} for c in CONTACTS}
+        # each raceway carries N: the runner checks the inner one as total_force, the outer one is checked here
+        q["total_force"] = q["total_force_inner"]
+        if abs(q["total_force_outer"] / scene["load.normal"] - 1.0) > 1e-6:
+            raise RuntimeError(f"outer raceway load {q['total_force_outer']:.6g} N != {scene['load.normal']:g} N")
+        return ModelResult(name, quantities=q, stats=stats, fields=fields)
+
+    run.__doc__ = f"The point-contact ``{name}`` model on the inner and the outer raceway contact."
+    return run
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {n: _both(n) for n in MODEL_NAMES}
+
+
+def load_of(scene: Scene) -> float:
+    return scene["load.normal"]
+
+
+def profile_scale(scene: Scene) -> float:
+    return point_contact.profile_scale(contact_scene(scene, "inner"))
+
+
+def stress_cases(scene: Scene) -> list:
+    from ..stability import StressCase
+
+    n = scene["load.normal"]
+    return [StressCase(f"load={n * f:.3g} N", {"load.normal": n * f}) for f in (1e-3, 1e-2, 0.1, 1.0)]
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    return {"bem": [{"numerics.bem_cells": n} for n in (17, 33, 65, 129)]}

@@ -1,0 +1,66 @@
+"""3D pictures of FE solutions for the report, rendered off-screen with pyvista (the ``viz`` extra).
+
+Headless machines need no X server: VTK renders through EGL/Mesa when told to use its EGL window
+(FEM-NOTES: 1.2 s per picture instead of 4.2 s after a failed X attempt). Without pyvista the report simply
+has no 3D pictures; the run itself never depends on them.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from ..result import RunResult
+
+
+def _pyvista():
+    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    try:
+        import pyvista
+    except ImportError:
+        return None
+    pyvista.OFF_SCREEN = True
+    return pyvista
+
+
+def _surface(pv, m, scalars: np.ndarray, name: str, faces_on_top: bool = False):
+    pts = np.asarray(m.fields["view_points"], dtype=float).T * 1e3           # mm
+    tri = np.asarray(m.fields["view_triangles"]).T
+    if faces_on_top:
+        tri = tri[(np.abs(pts[tri, 2]) < 1e-9).all(axis=1)]
+    faces = np.hstack([np.full((len(tri), 1), 3), tri]).ravel()
+    surf = pv.PolyData(pts, faces)
+    surf[name] = np.asarray(scalars, dtype=float)
+    return surf
+
+
+def fem_views(run: RunResult, out: Path, prefix: str) -> dict[str, str]:
+    """Two PNGs from the ``fem`` model's surface view: the mesh of the contact region coloured by von Mises
+    stress (symmetry-plane sections and contact face), and the contact pressure on the face."""
+    m = run.models.get("fem")
+    if m is None or m.status != "ok" or "view_points" not in m.fields:
+        return {}
+    pv = _pyvista()
+    if pv is None:
+        return {}
+    out = Path(out)
+    pics = {}
+    specs = (("mesh3d", "von Mises, GPa", m.fields["view_von_mises"] / 1e9, False, (1.0, -1.6, 0.9)),
+             ("pressure3d", "p, GPa", m.fields["view_pressure"] / 1e9, True, (0.0, 0.0, 1.0)))
+    for key, name, values, top, view in specs:
+        surf = _surface(pv, m, values, name, faces_on_top=top)
+        pl = pv.Plotter(off_screen=True, window_size=(900, 640))
+        pl.add_mesh(surf, scalars=name, show_edges=True, edge_color="#444444", line_width=0.3, cmap="viridis",
+                    scalar_bar_args={"title": name, "vertical": True, "position_x": 0.8, "position_y": 0.1})
+        pl.camera_position = "xy" if top else None
+        if not top:
+            pl.view_vector(view)
+        pl.add_axes(xlabel="x", ylabel="y", zlabel="z")
+        pl.add_text("FE mesh near the contact, von Mises on the symmetry sections (mm)" if not top else
+                    "FE contact pressure on the face z = 0 (mm)", font_size=10)
+        path = out / f"{prefix}-{key}.png"
+        pl.screenshot(str(path))
+        pl.close()
+        pics[key] = path.name
+    return pics

@@ -1,0 +1,54 @@
+"""srb-normal: seed 000's roller on its two raceways."""
+import numpy as np
+import pytest
+
+from femcheck import cache, references
+from femcheck.analytic.hertz import elliptic_contact
+from femcheck.problems import problem
+from femcheck.problems.srb_contact import radii
+from femcheck.scene import load_scene
+
+
+def test_local_radii_from_table_1_by_hand():
+    # r_m = (102.4 - 9.9) cos 11.5 deg = 90.641 mm; inner rolling radius 80.940 mm, ring curvature 82.600 mm:
+    # 1/Rx = 1/9.9 + 1/82.600 -> 8.8402 mm; 1/Ry = 1/100.3 - 1/103 -> 3826.2 mm. Outer: 1/Rx = 1/9.9 - 1/102.4
+    # -> 10.9580 mm (the outer ring's curvature radius is r_E itself); 1/Ry = 1/100.3 - 1/102.4 -> 4890.9 mm.
+    r = radii(load_scene("srb-normal").params)
+    assert r["inner"][0] == pytest.approx(8.8402e-3, rel=1e-4)
+    assert r["inner"][1] == pytest.approx(100.3 * 103 / 2.7 * 1e-3, rel=1e-9)
+    assert r["outer"][0] == pytest.approx(1 / (1 / 9.9 - 1 / 102.4) * 1e-3, rel=1e-9)
+    assert r["outer"][1] == pytest.approx(100.3 * 102.4 / 2.1 * 1e-3, rel=1e-9)
+
+
+def test_bem_matches_elliptic_hertz_on_both_raceways(femcheck_run, femcheck_assert_agree):
+    res = femcheck_run("srb-normal", models=["analytic", "bem"])
+    for c in ("inner", "outer"):
+        for q in ("p_max", "semi_axis_x", "semi_axis_y"):
+            femcheck_assert_agree(res, f"{q}_{c}", "bem", "analytic", rtol=0.01)
+    # each contact carries the roller load; the ellipse is ~40 times longer than wide
+    sc = load_scene("srb-normal")
+    rx, ry = radii(sc.params)["inner"]
+    h = elliptic_contact(5500.0, rx, ry, 207e9 / (2 * (1 - 0.09)))
+    assert 35 < h.semi_axis_y / h.semi_axis_x < 50
+    assert res.models["bem"].quantities["total_force_outer"] == pytest.approx(5500.0, rel=1e-9)
+
+
+def test_groove_tighter_than_the_crown_is_refused():
+    from femcheck.errors import InputError
+
+    with pytest.raises(InputError, match="groove_radius_inner"):
+        load_scene("srb-normal", {"geometry.groove_radius_inner": 0.1})
+
+
+def test_shipped_srb_reference_is_current_and_within_5_percent_of_hertz():
+    sc = load_scene("srb-normal")
+    dep = problem(sc.kind).DEPENDS["fem"]
+    ref = references.load(sc.kind, "fem", cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"]))
+    assert ref is not None, "references/ has no srb-normal entry for the current FEM code; run femcheck run srb-normal"
+    e_star = 207e9 / (2 * (1 - 0.09))
+    for c, (rx, ry) in radii(sc.params).items():
+        h = elliptic_contact(5500.0, rx, ry, e_star)
+        # issue 4: FE contact semi-axes within 5 % of elliptic Hertz for each raceway
+        assert ref.quantities[f"semi_axis_x_{c}"] == pytest.approx(h.semi_axis_x, rel=0.05)
+        assert ref.quantities[f"semi_axis_y_{c}"] == pytest.approx(h.semi_axis_y, rel=0.05)
+        assert np.isfinite(ref.quantities[f"p_max_{c}"])
