@@ -22,6 +22,8 @@ from .errors import InputError
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
                   help="Cross-check fast contact models against FEM references.")
 out_console = Console()
+SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786) to run the cases on; "
+                  "default: local processes (needs the dist extra)")
 if not out_console.is_terminal:       # piped or captured: do not wrap tables at 80 columns
     out_console = Console(width=220)
 err_console = Console(stderr=True)
@@ -168,8 +170,8 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
 def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
               set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override"),
               models: Optional[str] = typer.Option(None, "--models", help="comma-separated models"),
-              out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/bench-SCENE)")
-              ) -> None:
+              out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/bench-SCENE)"),
+              scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
     """Time-vs-error sweep of each model's discretisation: table, bench.json, bench.csv, log-log plot."""
     from .bench import bench, scaling_exponent
     from .report import plots
@@ -178,10 +180,14 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     sc = _scene(scene, set_)
     out = out or Path("reports") / f"bench-{sc.name}"
     with progress_bar(None, f"bench {sc.name}") as advance:
-        rows = bench(sc, _models(models), on_step=advance)
+        try:
+            rows = bench(sc, _models(models), on_step=advance, scheduler=scheduler)
+        except RuntimeError as err:
+            out_console.print(f"[red]{err}[/]")
+            raise typer.Exit(1)
     qnames = list(dict.fromkeys(k[4:] for r in rows for k in r if k.startswith("err_") and
                                 not k.startswith("err_self_")))
-    t = Table(title=f"{sc.name}: run time vs error (errors relative to analytic)")
+    t = Table(title=f"{sc.name}: run time vs error (errors relative to {sc['models.references'][0]})")
     for col in ["model", "setting", "size", "iterations", "time (s)"] + [f"{q} err" for q in qnames]:
         t.add_column(col)
     for r in rows:
@@ -213,8 +219,8 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
 def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
                set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override"),
                workers: Optional[int] = typer.Option(None, "--workers", help="worker processes"),
-               out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/stress-SCENE)")
-               ) -> None:
+               out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/stress-SCENE)"),
+               scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
     """Stability sweep over parameter extremes; lists every case that failed, was non-physical or inaccurate."""
     from .problems import problem
     from .report.html import AtomicDir
@@ -224,7 +230,7 @@ def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     out = out or Path("reports") / f"stress-{sc.name}"
     n = len(problem(sc.kind).stress_cases(sc))
     with progress_bar(n, f"stress {sc.name}") as advance:
-        cases = stress(sc, workers, on_done=lambda i, c: advance(c.label))
+        cases = stress(sc, workers, on_done=lambda i, c: advance(c.label), scheduler=scheduler)
     t = Table(title=f"{sc.name}: stability sweep ({len(cases)} cases)")
     models = sorted({m for c in cases for m in c.models})
     for col in ["case", "status"] + [f"{m} p_max err" for m in models] + ["problems"]:
@@ -241,6 +247,36 @@ def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
                                                     "failures": [c.label for c in bad]}, indent=1))
     out_console.print(f"{len(bad)} of {len(cases)} cases failed or were inaccurate; written {out}/stress.json")
     raise typer.Exit(1 if bad else 0)
+
+
+@app.command("map")
+def map_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
+            x: str = typer.Option(..., "--x", help="KEY=lo:hi:n[:log|:lin], the horizontal axis"),
+            y: str = typer.Option(..., "--y", help="KEY=lo:hi:n[:log|:lin], the vertical axis"),
+            set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override"),
+            models: Optional[str] = typer.Option(None, "--models", help="comma-separated models"),
+            workers: Optional[int] = typer.Option(None, "--workers", help="worker processes"),
+            scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
+            out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/map-SCENE)")) -> None:
+    """Validity map: run the scene over a grid of two keys; heat maps of each model's error against each
+    reference with the region inside tolerance outlined, map.json, and plain statements of where each model
+    may be used. Exit 1 if a model failed at some grid point."""
+    from .report.html import write_map_report
+    from .validity_map import parse_axis, validity_map
+
+    sc = _scene(scene, set_)
+    ax, ay = parse_axis("--x", x, sc), parse_axis("--y", y, sc)
+    names = _models(models)
+    out = out or Path("reports") / f"map-{sc.name}"
+    t0 = time.perf_counter()
+    with progress_bar(len(ax.values) * len(ay.values), f"map {sc.name}") as advance:
+        vmap = validity_map(sc, ax, ay, names, workers, scheduler,
+                            on_done=lambda i, p: advance(f"{p.overrides} {p.status}"))
+    index = write_map_report(vmap, out, time.perf_counter() - t0)
+    for line in vmap.statements():
+        out_console.print(f"- {line}")
+    out_console.print(f"written {index}, {out}/map.json")
+    raise typer.Exit(1 if any(p.status == "failed" for p in vmap.points) else 0)
 
 
 @app.command()

@@ -54,7 +54,8 @@ def _run_case(args: tuple[Scene, StressCase]) -> StressCase:
     return case
 
 
-def stress(scene: Scene, workers: int | None = None, on_done=None) -> list[StressCase]:
-    """Run every case of the kind's ``stress_cases(scene)`` (in worker processes) and classify it."""
+def stress(scene: Scene, workers: int | None = None, on_done=None, scheduler: str | None = None) -> list[StressCase]:
+    """Run every case of the kind's ``stress_cases(scene)`` (local worker processes, or the dask cluster at
+    ``scheduler``) and classify it."""
     cases = problem(scene.kind).stress_cases(scene)
-    return map_cases(_run_case, [(scene, c) for c in cases], workers, on_done)
+    return map_cases(_run_case, [(scene, c) for c in cases], workers, on_done, scheduler)

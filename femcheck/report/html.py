@@ -76,3 +76,18 @@ def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float)
         html = _env().get_template("index.html.j2").render(title=title, scenes=scenes, summary=data)
         (tmp / "index.html").write_text(html)
     return Path(out) / "index.html"
+
+
+def write_map_report(vmap, out: Path, elapsed_s: float) -> Path:
+    """Write ``out/index.html``, ``out/map.json`` and one heat map per (model, reference, quantity)."""
+    with AtomicDir(out) as tmp:
+        figs = [plots.validity_heatmap(vmap, c, tmp / f"map-{c[0]}-vs-{c[1]}-{c[2]}.png".replace("@", "_"))
+                for c in vmap.comparisons()]
+        data = {"femcheck_version": __version__, "created": time.strftime("%Y-%m-%dT%H:%M:%S"),
+                "elapsed_s": elapsed_s, **vmap.to_json()}
+        (tmp / "map.json").write_text(json.dumps(data, indent=1))
+        html = _env().get_template("map.html.j2").render(
+            m=vmap, figs=figs, statements=data["statements"], version=__version__, created=data["created"],
+            elapsed_s=elapsed_s)
+        (tmp / "index.html").write_text(html)
+    return Path(out) / "index.html"

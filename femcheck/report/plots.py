@@ -168,3 +168,44 @@ def time_error(rows: list[dict], path: Path, title: str) -> str:
     axes[0].set_ylabel("relative error")
     fig.suptitle(title)
     return _save(fig, path)
+
+
+def _edges(values: tuple[float, ...], log: bool) -> np.ndarray:
+    """Cell edges around grid values: midpoints (geometric on a log axis), the ends extended symmetrically."""
+    v = np.log(values) if log else np.asarray(values, dtype=float)
+    mid = 0.5 * (v[1:] + v[:-1])
+    e = np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
+    return np.exp(e) if log else e
+
+
+def validity_heatmap(vmap, comparison: tuple[str, str, str], path: Path) -> str:
+    """Heat map of log10 |relative error| of one (model, reference, quantity) over the map grid, the region
+    within tolerance outlined in white, grid points without a value (refused / failed) crossed out."""
+    err, ok, tol = vmap.grid(comparison)
+    x, y = np.asarray(vmap.x.values, dtype=float), np.asarray(vmap.y.values, dtype=float)
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    with np.errstate(divide="ignore"):
+        z = np.log10(np.maximum(err, 1e-16))
+    ex, ey = _edges(vmap.x.values, vmap.x.log), _edges(vmap.y.values, vmap.y.log)
+    mesh = ax.pcolormesh(ex, ey, z, cmap="viridis", shading="flat")
+    fig.colorbar(mesh, ax=ax, label="log10 relative error")
+    # outline of the region within tolerance: every edge between a passing cell and anything else
+    inside = np.pad(ok == 1.0, 1)
+    for iy, ix in zip(*np.nonzero(inside[1:-1, 1:-1])):
+        i, j = iy + 1, ix + 1
+        for di, dj, xs, ys in ((-1, 0, ex[ix:ix + 2], [ey[iy]] * 2), (1, 0, ex[ix:ix + 2], [ey[iy + 1]] * 2),
+                               (0, -1, [ex[ix]] * 2, ey[iy:iy + 2]), (0, 1, [ex[ix + 1]] * 2, ey[iy:iy + 2])):
+            if not inside[i + di, j + dj]:
+                ax.plot(xs, ys, "w-", lw=2.2)
+    for iy, ix in zip(*np.nonzero(np.isnan(err))):
+        ax.plot(x[ix], y[iy], "rx", ms=7)
+    if vmap.x.log:
+        ax.set_xscale("log")
+    if vmap.y.log:
+        ax.set_yscale("log")
+    ax.set_xlabel(vmap.x.key)
+    ax.set_ylabel(vmap.y.key)
+    model, ref, q = comparison
+    tol_txt = f"tolerance {tol:.3g} (white: within)" if tol is not None else "no tolerance set"
+    ax.set_title(f"{vmap.scene}: {model} vs {ref}, {q}\n{tol_txt}; x: no value", fontsize=9)
+    return _save(fig, path)
