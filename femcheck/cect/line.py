@@ -1,0 +1,323 @@
+"""Kalker's exact theory in 2D (plane strain): frictional line contact on a uniform strip grid.
+
+Frame and signs as in :mod:`femcheck.analytic.carter`: body 1 = upper body (cylinder), body 2 = lower body
+(block); ``traction`` q (Pa) acts on body 1 and is exerted by body 2; u = u_x1 - u_x2 is the tangential
+surface-displacement difference (m). Rolling is in +x (material flows through the contact in -x).
+
+Influence coefficients (uniform strips of width dx, piecewise-constant traction):
+  * tangential: u(x) = -(2/(pi E*)) int q(s) ln|x - s| ds + const (Johnson 1985 eq. 2.19b per body, the two
+    bodies' compliances adding because each carries the opposite traction), integrated exactly over a strip
+    by :func:`femcheck.bem.influence.half_plane_strip` (the same log kernel as the normal displacement);
+  * normal-tangential coupling: d u/dx = -kappa p(x), kappa = (1 - 2 nu1)/(2 G1) - (1 - 2 nu2)/(2 G2) (1/Pa)
+    (Johnson 1985 eq. 2.25a per body). kappa = 0 for quasi-identical bodies.
+Coupling is handled by **Johnson's process** (Kalker 1990 §5.2): the normal problem is solved first without
+friction and its pressure is kept; the tangential problem includes the pressure-induced tangential
+displacement; the (second-order) effect of the tangential traction on the pressure is neglected. In steady
+rolling the pressure-induced displacement is carried through the contact and enters the slip through its
+x-gradient. In the shift problem it is present before the tangential load and does not change while Q' grows,
+so it does not enter the slip increment; the normal loading is taken as frictionless (no locked-in
+tractions of the Spence type for dissimilar bodies). The Panagiotopoulos process (alternating normal and
+tangential solves) is not implemented.
+
+Steady rolling (seed 000 eqs 16-17 and 20): v = w + V du/dx_Lagrangian; discretised in time with
+Delta q = V Delta t = dx, the particle now at cell i was at cell i+1 one step earlier (upstream), so
+    s_i / V = xi + (u_i - u_{i+1}) / dx    (seed 000 eq 20: (u - u')_t = [IC](p(x) - p(x + dx)))
+plus the coupling term kappa (p_i + p_{i+1})/2. Coulomb: |q_i| <= mu p_i; s_i = 0 (adhesion) or
+q_i = -mu p_i s_i/|s_i| (slip).
+Shift (Cattaneo, load control): body 1 is displaced rigidly by delta (m) relative to body 2; the slip
+displacement is S_i = delta + u_i, the same Coulomb law holds and dx sum(q) = -Q' (Q' is the tangential force
+applied to body 1; the contact traction on body 1 balances it).
+
+Solver: a primal active-set method (Kalker's KOMBI-type "contact/slip area" iteration): for a guessed
+adhesion set and slip directions the linear equations s_A = 0 (plus the force constraint in the shift problem)
+are solved directly (dense LU on the adhesion cells); cells whose traction exceeds the traction bound move to
+slip, slip cells whose slip opposes their traction direction move to adhesion; repeat until the sets no longer
+change, then check the residual. Non-convergence raises :class:`femcheck.errors.ConvergenceError`.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from scipy import linalg
+
+from ..bem.influence import half_plane_strip
+from ..bem.line import solve_line_contact
+from ..bem.polonsky_keer import NormalContactResult
+from ..errors import ConvergenceError
+from ..materials import Elastic
+
+#: A traction counts as exceeding the bound only beyond this relative margin (round-off of the direct solve).
+BOUND_SLACK = 1e-10
+
+
+def coupling_constant(body1: Elastic, body2: Elastic) -> float:
+    """kappa = (1 - 2 nu1)/(2 G1) - (1 - 2 nu2)/(2 G2) (1/Pa): d u/dx = -kappa p for u = u_x1 - u_x2 under a
+    pressure p (Johnson 1985 eq. 2.25a for each body). A rigid body contributes 0. Zero for quasi-identical
+    bodies; equal to 2K/G with Kalker's difference parameter K = (G/4)[(1-2nu1)/G1 - (1-2nu2)/G2]."""
+    def part(b: Elastic) -> float:
+        return 0.0 if b.rigid else (1.0 - 2.0 * b.nu) / (2.0 * b.shear_modulus)
+    return part(body1) - part(body2)
+
+
+def tangential_influence(n: int, dx: float, modulus: float, datum: float) -> np.ndarray:
+    """Influence coefficients C[k] = u at lag k dx (k = -(n-1) .. n, as an array indexed k + n - 1) per unit
+    uniform traction (1 Pa) on a strip of width dx (m): the half-plane log kernel with contact modulus E* (Pa)
+    and a datum length (m) fixing the additive constant (it cancels in every slip)."""
+    lags = np.arange(-(n - 1), n + 1) * dx
+    return half_plane_strip(lags, dx, modulus, datum)
+
+
+def _toeplitz(kernel: np.ndarray, rows: np.ndarray, cols: np.ndarray, n: int, shift: int = 0) -> np.ndarray:
+    """Dense block K[i, j] = kernel[(i + shift) - j + n - 1] for i in rows, j in cols (a gather, no loop)."""
+    return kernel[(rows[:, None] + shift) - cols[None, :] + n - 1]
+
+
+@dataclass
+class LineTangentialResult:
+    """Solution of a 2D tangential contact problem, in the spirit of ``scipy.optimize.OptimizeResult``.
+
+    Fields on the grid (cell centres ``x``, width ``dx``, m): ``pressure`` p (Pa), ``traction`` q on body 1
+    (Pa), ``contact`` and ``adhesion`` masks, ``slip`` (rolling: slip velocity / V, -; shift: slip
+    displacement, m), ``slip_velocity`` (m/s, rolling, for rolling speed ``speed``), ``power_density``
+    -q v (W/m^2, rolling). Scalars: ``tangential_force`` dx sum(q) (N/m, on body 1), ``adhesion_length``
+    (m), ``rigid_shift`` delta (m, shift problem; depends on ``datum``), ``shift`` = delta - delta_stick (m,
+    the micro-slip part), ``iterations`` (active-set iterations, summed over the sub-solves), ``residual``
+    (relative, see :func:`_active_set`), ``converged``, ``time_s``.
+    """
+
+    problem: str
+    x: np.ndarray
+    dx: float
+    pressure: np.ndarray
+    traction: np.ndarray
+    contact: np.ndarray
+    adhesion: np.ndarray
+    slip: np.ndarray
+    tangential_force: float
+    adhesion_length: float
+    iterations: int
+    residual: float
+    converged: bool
+    time_s: float
+    speed: float | None = None
+    rigid_shift: float | None = None
+    shift: float | None = None
+    datum: float | None = None
+    history: list = field(default_factory=list)
+
+    @property
+    def slip_velocity(self) -> np.ndarray | None:
+        return None if self.problem != "rolling" else self.speed * self.slip
+
+    @property
+    def power_density(self) -> np.ndarray | None:
+        """Frictional power density -q . v (W/m^2); >= 0 by Coulomb's law."""
+        return None if self.problem != "rolling" else -self.traction * self.slip_velocity
+
+
+@dataclass
+class _ActiveSetOutcome:
+    q: np.ndarray
+    s: np.ndarray
+    stick: np.ndarray
+    lam: float
+    iterations: int
+    residual: float
+    history: list
+
+
+def _active_set(A: np.ndarray, b: np.ndarray, g: np.ndarray, s_scale: float, tol: float, max_iter: int,
+                force: float | None = None, weight: float = 1.0, solver: str = "active set",
+                stick0: np.ndarray | None = None) -> _ActiveSetOutcome:
+    """Coulomb complementarity on n cells: s = A q + b (+ lam when ``force`` is given, lam a free unknown
+    with the constraint weight * sum(q) = force); |q| <= g; s = 0 where |q| < g; q = -g sgn(s) where s != 0.
+
+    Residual (relative): max of |s| on adhesion cells / s_scale, the bound excess (|q| - g)+ / max g on
+    adhesion cells, and the wrong-way slip (s sgn(-q))- / s_scale on slip cells; it must fall below ``tol``
+    once the sets are stable. ``stick0`` is the initial adhesion set (default: all cells).
+    """
+    n = b.size
+    stick = np.ones(n, bool) if stick0 is None else stick0.copy()
+    direction = np.zeros(n)          # sgn of slip on slip cells (q = -g * direction)
+    gmax = float(g.max())
+    history: list[tuple[int, int]] = []
+    seen: set[bytes] = set()
+    # Solve in units of the self-compliance so that the bordered system (compliance block next to the unit
+    # column of the rigid shift and the unit row of the force constraint) is well scaled.
+    c0 = float(np.abs(np.diag(A)).max()) or 1.0
+    for it in range(1, max_iter + 1):
+        q = np.zeros(n)
+        q[~stick] = -g[~stick] * direction[~stick]
+        S = np.flatnonzero(stick)
+        L = np.flatnonzero(~stick)
+        lam = 0.0
+        rhs = (-b[S] - A[np.ix_(S, L)] @ q[L]) / c0
+        if force is None:
+            if S.size:
+                q[S] = linalg.solve(A[np.ix_(S, S)] / c0, rhs, check_finite=False)
+        else:
+            # bordered system [A_SS/c0 1; 1^T 0] [q_S; lam/c0] = [rhs/c0; F/w - sum(q_L)]
+            m = S.size
+            if m == 0:
+                raise ConvergenceError(solver, it, np.inf, tol, "no adhesion cell left: the load exceeds mu W'")
+            M = np.zeros((m + 1, m + 1))
+            M[:m, :m] = A[np.ix_(S, S)] / c0
+            M[:m, m] = 1.0
+            M[m, :m] = 1.0
+            r = np.append(rhs, force / weight - q[L].sum())
+            sol = linalg.solve(M, r, check_finite=False)
+            q[S], lam = sol[:m], float(sol[m]) * c0
+        s = A @ q + b + lam
+        over = stick & (np.abs(q) > g * (1.0 + BOUND_SLACK))
+        wrong = ~stick & (s * direction < 0.0)
+        history.append((int(stick.sum()), int(over.sum() + wrong.sum())))
+        if not over.any() and not wrong.any():
+            s_true = A @ q + b + lam
+            res = max(float(np.abs(s_true[stick]).max(initial=0.0)) / s_scale,
+                      float(np.clip(np.abs(q[stick]) - g[stick], 0.0, None).max(initial=0.0)) / gmax,
+                      float(np.clip(-s_true[~stick] * direction[~stick], 0.0, None).max(initial=0.0)) / s_scale)
+            if res > tol:
+                raise ConvergenceError(solver, it, res, tol, "active sets stable but equations not met")
+            s_true[stick] = 0.0
+            return _ActiveSetOutcome(q, s_true, stick, lam, it, res, history)
+        # Kalker's area update: over-loaded adhesion cells slip against their traction, wrong-way slip cells
+        # stick. Both changes at once; a revisited state means cycling, then only the largest violation moves.
+        key = stick.tobytes() + np.sign(direction).astype(np.int8).tobytes()
+        seen.add(key)
+        new_stick, new_dir = stick.copy(), direction.copy()
+        new_stick[over] = False
+        new_dir[over] = -np.sign(q[over])
+        new_stick[wrong] = True
+        new_dir[wrong] = 0.0
+        if (new_stick.tobytes() + np.sign(new_dir).astype(np.int8).tobytes()) in seen:
+            viol = np.where(over, (np.abs(q) - g) / gmax, 0.0) + np.where(wrong, np.abs(s) / s_scale, 0.0)
+            k = int(np.argmax(viol))
+            new_stick, new_dir = stick.copy(), direction.copy()
+            if over[k]:
+                new_stick[k], new_dir[k] = False, -np.sign(q[k])
+            else:
+                new_stick[k], new_dir[k] = True, 0.0
+        stick, direction = new_stick, new_dir
+    raise ConvergenceError(solver, max_iter, np.inf, tol, "adhesion/slip areas did not settle")
+
+
+def _contact_cells(pressure: np.ndarray) -> np.ndarray:
+    idx = np.flatnonzero(pressure > 0)
+    if idx.size == 0:
+        raise ValueError("no cell in contact: the tangential problem needs a positive pressure")
+    return idx
+
+
+def solve_rolling(x: np.ndarray, dx: float, pressure: np.ndarray, modulus: float, mu: float, xi: float,
+                  kappa: float = 0.0, speed: float = 1.0, tol: float = 1e-8,
+                  max_iter: int = 200) -> LineTangentialResult:
+    """Steady rolling with longitudinal creepage ``xi`` (-) on the strip grid ``x`` (cell centres, m, uniform
+    width ``dx``) with given ``pressure`` (Pa), contact modulus E* (Pa), friction ``mu`` and coupling
+    ``kappa`` (1/Pa, :func:`coupling_constant`). See the module doc for the discretisation (seed 000 eq 20).
+
+    The grid must extend at least one cell beyond the leading edge of the contact (the backward difference
+    in time reads the upstream cell). ``speed`` V (m/s) only scales the reported slip velocities and power.
+    """
+    t0 = time.perf_counter()
+    x, pressure = np.asarray(x, float), np.asarray(pressure, float)
+    n = x.size
+    J = _contact_cells(pressure)
+    if J[-1] >= n - 1:
+        raise ValueError("the contact reaches the leading edge of the grid; enlarge the grid")
+    datum = 8.0 * n * dx
+    C = tangential_influence(n, dx, modulus, datum)
+    # A[i, j] = (C(i - j) - C(i + 1 - j)) / dx: slip per unit traction (1/Pa), a datum-free difference.
+    A = (_toeplitz(C, J, J, n) - _toeplitz(C, J, J, n, shift=1)) / dx
+    p_next = np.append(pressure[1:], 0.0)
+    b = xi + kappa * 0.5 * (pressure[J] + p_next[J])
+    g = mu * pressure[J]
+    p0 = float(pressure.max())
+    s_scale = max(abs(xi), 2.0 * mu * p0 / modulus)       # creepage at saturation sets the slip scale
+    out = _active_set(A, b, g, s_scale, tol, max_iter, solver="CECT-2D rolling (active set)")
+    q = np.zeros(n)
+    q[J] = out.q
+    s = np.zeros(n)
+    s[J] = out.s
+    adhesion = np.zeros(n, bool)
+    adhesion[J] = out.stick
+    contact = pressure > 0
+    return LineTangentialResult("rolling", x, dx, pressure, q, contact, adhesion, s, float(dx * q.sum()),
+                                float(dx * adhesion.sum()), out.iterations, out.residual, True,
+                                time.perf_counter() - t0, speed=speed, history=out.history)
+
+
+def solve_shift(x: np.ndarray, dx: float, pressure: np.ndarray, modulus: float, mu: float,
+                tangential_per_length: float, tol: float = 1e-8, max_iter: int = 200) -> LineTangentialResult:
+    """Cattaneo shift under load control: the tangential force Q' (N/m) is applied to body 1; unknowns the
+    traction and the rigid shift delta (m). Solved twice: with friction ``mu`` and fully adhered (no traction
+    bound), so that ``shift`` = delta - delta_stick is the datum-free micro-slip part (femcheck's 2D shift).
+    Raises ValueError when |Q'| >= mu W' (gross sliding: no static solution).
+    """
+    t0 = time.perf_counter()
+    x, pressure = np.asarray(x, float), np.asarray(pressure, float)
+    n = x.size
+    J = _contact_cells(pressure)
+    load = float(dx * pressure.sum())
+    if abs(tangential_per_length) >= mu * load:
+        raise ValueError(f"|Q'| = {abs(tangential_per_length):g} N/m >= mu W' = {mu * load:g} N/m: gross sliding")
+    datum = 8.0 * n * dx
+    C = tangential_influence(n, dx, modulus, datum)
+    A = _toeplitz(C, J, J, n)                     # S = delta + C q: slip displacement per unit traction (m/Pa)
+    b = np.zeros(J.size)
+    F = -tangential_per_length / dx               # sum(q) on body 1 balances the applied force
+    p0 = float(pressure.max())
+    a_est = 0.5 * dx * J.size
+    d_scale = mu * p0 * a_est / modulus           # micro-slip shift scale (m)
+    stuck = _active_set(A, b, np.full(J.size, np.inf), d_scale, tol, 2, force=F,
+                        solver="CECT-2D full-stick shift")
+    out = _active_set(A, b, mu * pressure[J], d_scale, tol, max_iter, force=F,
+                      solver="CECT-2D shift (active set)")
+    q = np.zeros(n)
+    q[J] = out.q
+    s = np.zeros(n)
+    s[J] = out.s
+    adhesion = np.zeros(n, bool)
+    adhesion[J] = out.stick
+    # both sub-solves put delta with the sign of the slip S = delta + u; report it in the direction of Q'
+    delta, delta_stick = out.lam, stuck.lam
+    return LineTangentialResult("shift", x, dx, pressure, q, pressure > 0, adhesion, s, float(dx * q.sum()),
+                                float(dx * adhesion.sum()), out.iterations + stuck.iterations,
+                                max(out.residual, stuck.residual), True, time.perf_counter() - t0,
+                                rigid_shift=delta, shift=delta - delta_stick, datum=datum, history=out.history)
+
+
+@dataclass
+class LineFrictionSolution:
+    """Normal (frictionless, Johnson's process) + tangential solution on one grid."""
+
+    normal: NormalContactResult
+    tangential: LineTangentialResult
+
+    @property
+    def x(self) -> np.ndarray:
+        return self.tangential.x
+
+
+def solve_line_friction(gap: Callable[[np.ndarray], np.ndarray], modulus: float, load_per_length: float,
+                        half_domain: float, n_elements: int, mu: float, xi: float | None = None,
+                        tangential_per_length: float | None = None, kappa: float = 0.0, speed: float = 1.0,
+                        tol: float = 1e-8, normal_tol: float = 1e-10, max_iter: int = 200) -> LineFrictionSolution:
+    """Normal problem (half-plane BEM, :func:`femcheck.bem.line.solve_line_contact`) then the tangential
+    problem on the same strips: steady rolling when ``xi`` is given, shift when ``tangential_per_length`` is
+    given (exactly one). ``gap(x)`` initial gap (m), E* (Pa), W' (N/m), grid [-half_domain, half_domain] (m).
+    """
+    if (xi is None) == (tangential_per_length is None):
+        raise ValueError("give exactly one of xi (steady rolling) or tangential_per_length (shift)")
+    sol = solve_line_contact(gap, modulus, load_per_length, half_domain, n_elements, tol=normal_tol)
+    r = sol.result
+    if r.contact[0] or r.contact[-1]:
+        raise ConvergenceError("CECT-2D normal problem", r.iterations, r.residual, normal_tol,
+                               "contact reaches the edge of the grid; enlarge the domain")
+    if xi is not None:
+        t = solve_rolling(sol.x, sol.dx, r.pressure, modulus, mu, xi, kappa, speed, tol, max_iter)
+    else:
+        t = solve_shift(sol.x, sol.dx, r.pressure, modulus, mu, tangential_per_length, tol, max_iter)
+    return LineFrictionSolution(r, t)
