@@ -1,13 +1,13 @@
 """FASTSIM: Kalker's simplified theory of steady rolling contact with Coulomb friction.
 
 Source: J.J. Kalker, "A fast algorithm for the simplified theory of rolling contact", *Vehicle System Dynamics*
-11 (1982) 1-13; Kalker 1990 (*Three-dimensional elastic bodies in rolling contact*, §3.3).
+11 (1982) 1-13; Kalker 1990 (*Three-dimensional elastic bodies in rolling contact*, simplified theory).
 
 Simplified theory: the tangential surface displacement difference is proportional to the local traction,
 u = L p (L a flexibility, m/Pa). In steady rolling (rolling velocity V along +x, material flowing from the leading
 edge x = +a(y) to the trailing edge x = -a(y)) the slip, normalised by V, is
 
-    s = w - du/dx,   w = (xi - phi y,  eta + phi x)      (rigid slip of Kalker 1990, Johnson 1985 eq. 8.33)
+    s = w - du/dx,   w = (xi - phi y,  eta + phi x)      (Kalker's rigid slip; Johnson 1985 §8.4)
 
 Adhesion (s = 0) gives dp/dx = w / L, integrated from p = 0 at the leading edge; where |p| would exceed the
 traction bound g = mu p_n the traction is put on the bound in the direction of the trial traction (slip).
@@ -39,7 +39,7 @@ edge (p = 0) through the nx cell centres x_{j,i} = a_j - (i + 1/2) dx_j, with th
 at the middle of the step (exact, the rigid slip being linear in x). Forces: midpoint rule in x and y. The
 traction bound is mu times the Hertz pressure p0 sqrt(1 - x^2/a^2 - y^2/b^2) (``bound="elliptic"``) or the
 parabolic bound mu (2N/(pi a b)) (1 - x^2/a^2 - y^2/b^2) with the same total load (``bound="parabolic"``,
-Kalker's recommendation for FASTSIM, closer to the exact theory).
+the bound Kalker used with FASTSIM: it brings the simplified theory closer to the exact one).
 
 Accuracy: for pure xi in complete adhesion the traction is linear in x, the midpoint rule along x is exact and only
 the strip rule errs (relative error 1/(2 ny^2)); for spin the traction is quadratic in x (error O(1/nx^2)). In

@@ -2,8 +2,8 @@
 
 For an elliptical Hertz contact with semi-axes a (rolling direction x) and b (lateral y), c = sqrt(a b), combined
 shear modulus G (1/G = (1/G1 + 1/G2)/2) and creepages xi (-), eta (-), spin phi (1/m), Kalker's linear theory
-(J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*, Kluwer 1990, ch. 1 and Table E.3;
-Johnson, *Contact Mechanics*, 1985, eq. 8.47 and Table 8.1) gives
+(J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*, Kluwer 1990, Table E.3 for the coefficients;
+Johnson, *Contact Mechanics*, 1985, §8.4 and Table 8.1) gives
 
     Fx = -G c^2 C11 xi                              (N)
     Fy = -G c^2 C22 eta - G c^3 C23 phi             (N)
@@ -60,7 +60,7 @@ def _check_nonnegative(key: str, value: float) -> float:
 
 def linear_creep(a: float, b: float, G: float, c11: float, c22: float, c23: float, c33: float,
                  xi: float, eta: float, phi: float) -> LinearCreepResult:
-    """Creep forces and spin moment of Kalker's linear theory (Kalker 1990; Johnson 1985 eq. 8.47).
+    """Creep forces and spin moment of Kalker's linear theory (Kalker 1990; Johnson 1985 §8.4).
 
     Fx = -G c^2 C11 xi;  Fy = -G c^2 C22 eta - G c^3 C23 phi;  Mz = G c^3 C23 eta - G c^4 C33 phi;  c = sqrt(a b).
 
