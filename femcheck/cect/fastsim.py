@@ -116,6 +116,8 @@ def fastsim(a: float, b: float, normal_load: float, G: float, c11: float, c22: f
     flexibilities; ``mu`` Coulomb friction coefficient (> 0); ``xi``, ``eta`` creepages (-), ``phi`` spin (1/m);
     ``nx`` cells along each strip, ``ny`` strips; ``bound`` "elliptic" (Hertz) or "parabolic" traction bound;
     ``flexibility`` "weighted" (Kalker 1982, single L) or "separate" (L1, L2, L3 per creepage term).
+    With "weighted", small *combined* creepages are not exactly linear theory (L is a creepage-weighted mean);
+    "separate" superposes them exactly but does not tend to full slip at large combined creepage.
 
     The marching from the leading edge is vectorised over the strips (one loop over the nx steps).
     Raises :class:`femcheck.errors.InputError` on bad input.
