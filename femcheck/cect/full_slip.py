@@ -2,8 +2,8 @@
 
 Seed 000 (Blanco-Lorenzo et al. 2022): the "usual full slip approach" of its introduction and the full-slip
 column of its Table 2 (described in the text of §4.3); Johnson 1985 §8.4. The elastic displacement gradients are
-neglected against the rigid slip, so every point slips and the tangential traction is the Coulomb limit directed against the local rigid
-slip velocity,
+neglected against the rigid slip, so every point slips and the tangential traction is the Coulomb limit
+directed against the local rigid slip velocity,
 
     p_t(x, y) = -mu p(x, y) w / |w|,   w = (xi - phi y, eta + phi x)      (Pa; w normalised by the rolling speed)
 
