@@ -1,0 +1,264 @@
+"""Plane-strain line contact with friction: a cylinder on a block, steady rolling (Carter) or shift (2D Cattaneo).
+
+Which problem is solved follows from the scene: ``kinematics.xi`` (steady rolling with creepage xi: scene
+carter-2d) or ``load.tangential_per_length`` (tangential force Q' on the cylinder, load control: scene
+cattaneo-2d) -- exactly one of them. Frame and signs: :mod:`femcheck.analytic.carter` (forces are those on the
+cylinder, the creep force opposes xi; the shift is positive in the direction of Q').
+
+Models: ``exact`` (Kalker's exact theory in 2D, :mod:`femcheck.cect.line`), ``analytic`` (Carter / 2D
+Cattaneo closed forms, quasi-identical bodies), ``full_slip`` (rolling only: traction -mu p sgn(xi)).
+Quantities: rolling -- ``creep_force_x`` (N/m), ``adhesion_length`` (m), ``adhesion_fraction`` (-);
+shift -- ``shift`` (m, the micro-slip part delta(Q') - delta_stick(Q'), see the conventions), ``stick_half_width``
+(m); both -- ``half_width`` (m), ``p_max`` (Pa), ``total_force`` (N/m, normal).
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from ..analytic import carter, hertz
+from ..cect.line import coupling_constant, solve_line_friction
+from ..errors import InputError
+from ..materials import effective_modulus
+from ..qoi import half_width
+from ..result import ModelResult
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+
+MODEL_NAMES = ("exact", "analytic", "full_slip")
+# ---------------------------------------------------------------------------------------------------------
+# FEM reference (place reserved, wired by the lead): femcheck/fem/friction_line.py (helper H3) exposes
+#     model(params: dict, progress=None) -> ModelResult,  FEM_SCHEMA: dict[str, Key],  FEM_DEFAULTS: dict
+# of its numerics.fem_* keys. Wiring, once it exists (not imported here on purpose):
+#     from ..fem import friction_line
+#     MODEL_NAMES += ("fem",);  SCHEMA.update(friction_line.FEM_SCHEMA);  DEFAULTS.update(friction_line.FEM_DEFAULTS)
+#     MODELS["fem"] = lambda scene, progress=None: friction_line.model(scene.params, progress)
+#     DEPENDS["fem"] = {"params": ("geometry.", "load.", "materials.", "friction.", "kinematics.",
+#                                  "numerics.fem_"), "code": ("fem", "problems/line_tangential.py", "materials.py",
+#                                  "result.py"), "reference": True}
+# and "fem" added to the choices of models.run / the scenes' models.run and tolerances (tolerances.fem.*).
+# ---------------------------------------------------------------------------------------------------------
+MAX_A_OVER_R = 0.1       # half-space and small-strain limit, as for hertz-line
+QUASI_IDENTICAL_TOL = 1e-9   # |kappa E*| below this: no normal-tangential coupling (Carter applies exactly)
+STRESS_QUANTITIES = ("creep_force_x", "adhesion_length", "shift", "stick_half_width")
+
+SCHEMA: dict[str, Key] = {
+    "geometry.radius": Key("float", "m", "cylinder radius R", lo=0.0),
+    "load.per_length": Key("float", "N/m", "normal load per unit length W'", lo=0.0),
+    "load.tangential_per_length": Key("float", "N/m", "tangential force per unit length Q' on the cylinder "
+                                      "(shift problem; |Q'| < mu W')"),
+    **material_keys("cylinder"),
+    **{k: v for k, v in material_keys("block").items() if not k.endswith("rigid")},
+    "friction.mu": Key("float", "-", "Coulomb friction coefficient", lo=0.0, hi=10.0, hi_closed=True),
+    "kinematics.xi": Key("float", "-", "longitudinal creepage (steady-rolling problem)", lo=-0.1, hi=0.1,
+                         lo_closed=True, hi_closed=True),
+    "kinematics.speed": Key("float", "m/s", "rolling speed V (scales slip velocities and frictional power)",
+                            lo=0.0),
+    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
+    "models.references": Key("list", "-", "models every other model is compared against",
+                             choices=("analytic", "exact", "fem")),
+    "numerics.exact_elements": Key("int", "-", "strips of the exact solver over the domain", lo=20, hi=4096,
+                                   lo_closed=True, hi_closed=True),
+    "numerics.exact_domain": Key("float", "a_H", "exact-solver domain half-length / Hertz half-width", lo=1.02,
+                                 hi=3.0, hi_closed=True),
+    "numerics.exact_tol": Key("float", "-", "relative residual of the exact tangential solver", lo=0.0, hi=1e-4,
+                              hi_closed=True),
+    "numerics.exact_max_iter": Key("int", "-", "active-set iterations allowed", lo=2, hi=10000, lo_closed=True,
+                                   hi_closed=True),
+    "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+}
+
+DEFAULTS: dict[str, Any] = {
+    "materials.cylinder.rigid": False,
+    "kinematics.speed": 1.0,
+    "models.run": list(MODEL_NAMES),
+    "models.references": ["analytic"],
+    # 500 strips over [-1.25 a, 1.25 a]: dx = a/200 and the Hertz edges fall on cell boundaries (elements/10
+    # integer), which removes the O(dx) jitter of a partially covered edge cell from the 2D shift.
+    "numerics.exact_elements": 500,
+    "numerics.exact_domain": 1.25,
+    "numerics.exact_tol": 1e-8,
+    "numerics.exact_max_iter": 200,
+}
+REQUIRED = ("geometry.radius", "load.per_length", "materials.block.E", "materials.block.nu", "friction.mu")
+DEPENDS: dict[str, dict] = {}
+
+
+def problem_type(params: dict[str, Any]) -> str:
+    """``rolling`` (kinematics.xi given) or ``shift`` (load.tangential_per_length given)."""
+    return "rolling" if "kinematics.xi" in params else "shift"
+
+
+def _modulus(params: dict[str, Any]) -> float:
+    return effective_modulus(elastic(params, "cylinder"), elastic(params, "block"))
+
+
+def _hertz(params: dict[str, Any]) -> hertz.LineContact:
+    return hertz.line_contact(params["load.per_length"], params["geometry.radius"], _modulus(params))
+
+
+def _kappa(params: dict[str, Any]) -> float:
+    return coupling_constant(elastic(params, "cylinder"), elastic(params, "block"))
+
+
+def validate(params: dict[str, Any]) -> None:
+    """Exactly one of kinematics.xi / load.tangential_per_length; |Q'| < mu W'; a/R <= MAX_A_OVER_R."""
+    has_xi, has_q = "kinematics.xi" in params, "load.tangential_per_length" in params
+    if has_xi == has_q:
+        raise InputError("kinematics.xi" if has_xi else "load.tangential_per_length",
+                         "give exactly one of kinematics.xi (steady rolling) and load.tangential_per_length "
+                         "(shift)" + (" -- both are set" if has_xi else " -- neither is set"))
+    check_body_pair(params, ("cylinder", "block"))
+    h = _hertz(params)
+    ratio = h.half_width / params["geometry.radius"]
+    if ratio > MAX_A_OVER_R:
+        w_max = params["load.per_length"] * (MAX_A_OVER_R / ratio) ** 2
+        raise InputError("load.per_length", f"{params['load.per_length']:g} N/m gives a Hertz half-width a/R = "
+                         f"{ratio:.3g} > {MAX_A_OVER_R}; allowed (0, {w_max:.4g}] N/m for this radius and these "
+                         "materials")
+    if has_q:
+        limit = params["friction.mu"] * params["load.per_length"]
+        if abs(params["load.tangential_per_length"]) >= limit:
+            raise InputError("load.tangential_per_length",
+                             f"{params['load.tangential_per_length']:g} N/m is not allowed; allowed: |Q'| < mu W' = "
+                             f"{limit:.6g} N/m (beyond it the cylinder slides: no partial-slip state)")
+    n, dom = params["numerics.exact_elements"], params["numerics.exact_domain"]
+    if n * (1.0 - 1.0 / dom) / 2.0 < 2.0:
+        raise InputError("numerics.exact_elements", f"{n} leaves fewer than 2 free cells beyond the contact; "
+                         "raise it or numerics.exact_domain")
+
+
+def _common(h: hertz.LineContact) -> dict[str, float]:
+    return {"half_width": h.half_width, "p_max": h.p_max, "total_force": h.load}
+
+
+def exact(scene: Scene, progress=None) -> ModelResult:
+    """Kalker's exact theory in 2D: half-plane BEM normal problem, then the tangential problem on the same
+    strips (Johnson's process for dissimilar bodies), solved by the active-set method."""
+    p = scene.params
+    h = _hertz(p)
+    kind = problem_type(p)
+    sol = solve_line_friction(lambda x: x**2 / (2.0 * p["geometry.radius"]), h.modulus, p["load.per_length"],
+                              p["numerics.exact_domain"] * h.half_width, p["numerics.exact_elements"],
+                              p["friction.mu"], xi=p.get("kinematics.xi"),
+                              tangential_per_length=p.get("load.tangential_per_length"), kappa=_kappa(p),
+                              speed=p["kinematics.speed"], tol=p["numerics.exact_tol"],
+                              max_iter=p["numerics.exact_max_iter"])
+    n, t = sol.normal, sol.tangential
+    contact_length = t.dx * t.contact.sum()
+    q = {"half_width": half_width(t.x, n.pressure), "p_max": float(n.pressure.max()), "total_force": n.load}
+    fields = {"x": t.x, "pressure": n.pressure, "traction": t.traction, "adhesion": t.adhesion.astype(float),
+              "slip": t.slip}
+    if kind == "rolling":
+        q.update(creep_force_x=t.tangential_force, adhesion_length=t.adhesion_length,
+                 adhesion_fraction=t.adhesion_length / contact_length)
+        fields.update(slip_velocity=t.slip_velocity, power_density=t.power_density)
+    else:
+        q.update(shift=t.shift, stick_half_width=0.5 * t.adhesion_length)
+    stats = {"problem": kind, "iterations": t.iterations, "residual": t.residual,
+             "normal_iterations": n.iterations, "normal_residual": n.residual, "n_elements": t.x.size,
+             "dx": t.dx, "contact_cells": int(t.contact.sum()), "adhesion_cells": int(t.adhesion.sum()),
+             "coupling_kappa": _kappa(p), "process": "Johnson", "solver": "active set (dense LU)",
+             "tangential_force": t.tangential_force, "time_tangential_s": t.time_s}
+    if kind == "shift":
+        stats.update(rigid_shift=t.rigid_shift, datum=t.datum)
+    else:
+        stats["frictional_power"] = float(t.dx * t.power_density.sum())   # W/m per unit length
+    return ModelResult("exact", quantities=q, stats=stats, fields=fields)
+
+
+def analytic(scene: Scene, progress=None) -> ModelResult:
+    """Carter (rolling) or 2D Cattaneo (shift) closed form; Carter needs quasi-identical bodies."""
+    p = scene.params
+    h = _hertz(p)
+    mu = p["friction.mu"]
+    x = np.linspace(-1.25 * h.half_width, 1.25 * h.half_width, 1001)
+    q = _common(h)
+    if problem_type(p) == "rolling":
+        beta = abs(_kappa(p)) * h.modulus
+        if beta > QUASI_IDENTICAL_TOL:
+            return ModelResult("analytic", "skipped", error=f"Carter's solution assumes quasi-identical bodies; "
+                               f"here the coupling kappa E* = {beta:.3g} (use the exact model)")
+        c = carter.carter_rolling(h.load, h.half_width, h.modulus, mu, p["kinematics.xi"])
+        q.update(creep_force_x=c.creep_force, adhesion_length=c.adhesion_length,
+                 adhesion_fraction=c.adhesion_fraction)
+        fields = {"x": x, "pressure": c.pressure(x), "traction": c.traction(x), "slip": c.slip(x)}
+        stats = {"problem": "rolling", "normalized_creepage": c.normalized_creepage, "E_star": h.modulus}
+    else:
+        c = carter.cattaneo_line(h.load, h.half_width, h.modulus, mu, p["load.tangential_per_length"])
+        q.update(shift=c.shift, stick_half_width=c.stick_half_width)
+        fields = {"x": x, "pressure": c.pressure(x), "traction": c.traction(x)}
+        stats = {"problem": "shift", "E_star": h.modulus,
+                 "note": "Johnson's process: the pressure-induced tangential displacement does not enter the "
+                         "shift, so the closed form holds for dissimilar bodies within that process"}
+    return ModelResult("analytic", quantities=q, stats=stats, fields=fields)
+
+
+def full_slip(scene: Scene, progress=None) -> ModelResult:
+    """Full slip (rolling only): the surfaces are taken rigid tangentially, so every point slips with the
+    rigid creepage and q = -mu p sgn(xi); F'_x = -mu W' sgn(xi), no adhesion."""
+    p = scene.params
+    if problem_type(p) != "rolling":
+        return ModelResult("full_slip", "skipped", error="full slip applies to steady rolling only, not to a shift")
+    h = _hertz(p)
+    xi, mu = p["kinematics.xi"], p["friction.mu"]
+    x = np.linspace(-1.25 * h.half_width, 1.25 * h.half_width, 1001)
+    pr = h.pressure(x)
+    q = {**_common(h), "creep_force_x": float(-np.sign(xi) * mu * h.load), "adhesion_length": 0.0,
+         "adhesion_fraction": 0.0}
+    fields = {"x": x, "pressure": pr, "traction": -np.sign(xi) * mu * pr}
+    return ModelResult("full_slip", quantities=q, stats={"problem": "rolling"}, fields=fields)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"exact": exact, "analytic": analytic, "full_slip": full_slip}
+
+
+def load_of(scene: Scene) -> float:
+    """Applied normal load (N/m) against which every model's ``total_force`` is checked."""
+    return scene["load.per_length"]
+
+
+def profile_scale(scene: Scene) -> float:
+    return _hertz(scene.params).half_width
+
+
+def saturation_creepage(params: dict[str, Any]) -> float:
+    """|xi| = 2 mu p0 / E* at which the contact saturates (Carter, xi* = 1)."""
+    h = _hertz(params)
+    return 2.0 * params["friction.mu"] * h.p_max / h.modulus
+
+
+def stress_cases(scene: Scene) -> list:
+    """Extremes: friction 0.01-2, creepage from 1e-6 of saturation through 0.99, 1.0, 1.01 and 100x
+    saturation (rolling) or Q'/(mu W') from 1e-6 to 0.9999 (shift), nu -> 0.4999, a rigid cylinder
+    (dissimilar bodies, Johnson's process), loads over six decades down to 1e-6 of the scene's."""
+    from ..stability import StressCase
+
+    p = scene.params
+    cases = [StressCase(f"mu={mu:g}", {"friction.mu": mu}) for mu in (0.01, 1.0, 2.0)]
+    if problem_type(p) == "rolling":
+        sat = saturation_creepage(p)
+        for f in (1e-6, 1e-3, 0.99, 1.0, 1.01, 100.0):
+            xi = float(np.sign(p["kinematics.xi"]) or 1.0) * min(f * sat, 0.1)
+            cases.append(StressCase(f"xi={f:g} x saturation", {"kinematics.xi": xi}))
+        cases.append(StressCase("xi=0", {"kinematics.xi": 0.0}))
+        cases.append(StressCase("xi<0", {"kinematics.xi": -p["kinematics.xi"]}))
+    else:
+        limit = p["friction.mu"] * p["load.per_length"]
+        for f in (1e-6, 1e-3, 0.99, 0.9999):
+            cases.append(StressCase(f"Q'={f:g} mu W'", {"load.tangential_per_length": f * limit}))
+    for nu in (0.0, 0.45, 0.4999):
+        cases.append(StressCase(f"nu={nu:g}", {"materials.cylinder.nu": nu, "materials.block.nu": nu}))
+    cases.append(StressCase("rigid cylinder", {"materials.cylinder.rigid": True}))
+    for k in (2, 4, 6):
+        over = {"load.per_length": p["load.per_length"] * 10.0**-k}
+        if problem_type(p) == "shift":
+            over["load.tangential_per_length"] = p["load.tangential_per_length"] * 10.0**-k
+        cases.append(StressCase(f"load x 1e-{k}", over))
+    return cases
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    """Exact solver: strip counts (multiples of 10, so the Hertz edges stay on cell boundaries with the default
+    domain 1.25 a_H). The dense active-set solve is O(n^3) per iteration: 3200 strips take seconds."""
+    return {"exact": [{"numerics.exact_elements": n} for n in (50, 100, 200, 400, 800, 1600, 3200)]}
