@@ -187,3 +187,88 @@ def coated_block_half(width: float, depth: float, thickness: float, sizing: Laye
     cw = area2 < 0
     tris[1:, cw] = tris[2:0:-1, cw]
     return LayeredTriMesh(TriMesh(pts, tris), region, x, top_nodes, thickness, depth, width, y.size - 1)
+
+
+@dataclass
+class LayeredTetMesh:
+    """A coated quarter block [0, L] x [0, L] x [-depth, 0]: linear tetrahedra ``mesh`` (its ``top`` holds the
+    triangles of the face z = 0), ``region`` per tetrahedron (LAYER or SUBSTRATE), ``thickness`` t (m),
+    ``layer_rows`` element layers through the layer."""
+
+    mesh: "TetMesh"
+    region: np.ndarray
+    thickness: float
+    depth: float
+    length: float
+    layer_rows: int
+
+
+def coated_block_quarter(length: float, depth: float, thickness: float, sizing: LayerSizing, level: int,
+                         rigid_substrate: bool = False) -> LayeredTetMesh:
+    """Quarter of a coated block (symmetry planes x = 0 and y = 0, contact centred at the origin), mesh level
+    ``level`` (every length halves per level).
+
+    The top face is meshed by Gmsh with h = min(h_max, h_contact + grading * d), d the distance from the
+    quarter disc of radius x_contact; the layer is that surface mesh *extruded* through the thickness in
+    element layers (each prism split into three tetrahedra), with the through-thickness spacing of
+    :func:`coated_block_half` (at least ``layer_elements`` rows at level 0, doubled per level). The substrate
+    below is meshed unstructured (HXT, one thread: reproducible) with the same size law in 3D distance from the
+    fine half-ball; it shares the layer's bottom surface mesh, so the interface nodes are common. With
+    ``rigid_substrate`` only the layer is meshed.
+    """
+    import gmsh
+
+    from .mesh3d import TetMesh
+
+    s = sizing
+    if not (0 < thickness < depth or (rigid_substrate and thickness > 0)):
+        raise ValueError("need 0 < thickness < depth")
+    parts = 2**level
+    f = 1.0 / parts
+    d0 = graded_sequence(thickness, 0.0, s.h_contact, s.grading, s.h_max, min_intervals=s.layer_elements)
+    d = subdivide(d0, parts)
+    h0, g, hmax, zone = s.h_contact * f, s.grading * f, s.h_max * f, s.x_contact
+    with _Gmsh("coated_quarter") as model:
+        geo = model.geo
+        c = [geo.addPoint(0, 0, 0), geo.addPoint(length, 0, 0), geo.addPoint(length, length, 0),
+             geo.addPoint(0, length, 0)]
+        lines = [geo.addLine(c[i], c[(i + 1) % 4]) for i in range(4)]
+        top = geo.addPlaneSurface([geo.addCurveLoop(lines)])
+        out = geo.extrude([(2, top)], 0, 0, -thickness, numElements=[1] * (d.size - 1),
+                          heights=list(d[1:] / thickness), recombine=False)
+        interface, layer_vol = out[0][1], out[1][1]
+        vols = {LAYER: layer_vol}
+        if not rigid_substrate:
+            out2 = geo.extrude([(2, interface)], 0, 0, -(depth - thickness))
+            vols[SUBSTRATE] = out2[1][1]
+        geo.synchronize()
+        fld = model.mesh.field
+        size = fld.add("MathEval")
+        fld.setString(size, "F", f"Min({hmax!r}, {h0!r} + {g!r} * Max(0, Sqrt(x^2 + y^2 + z^2) - {zone!r}))")
+        fld.setAsBackgroundMesh(size)
+        for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
+            gmsh.option.setNumber(opt, 0)
+        gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+        model.mesh.generate(3)
+        tags, coords, _ = model.mesh.getNodes()
+        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+        index[tags.astype(np.int64)] = np.arange(tags.size)
+        points = coords.reshape(-1, 3).T.copy()
+        tets, region = [], []
+        for r, v in vols.items():
+            etypes, _, enodes = model.mesh.getElements(3, v)
+            if list(etypes) != [4]:
+                raise RuntimeError(f"volume {v} was not meshed with tetrahedra only ({list(etypes)})")
+            t4 = index[np.asarray(enodes[0], dtype=np.int64)].reshape(-1, 4).T
+            tets.append(t4)
+            region.append(np.full(t4.shape[1], r))
+        etypes, _, enodes = model.mesh.getElements(2, top)
+        tris = index[np.asarray(enodes[list(etypes).index(2)], dtype=np.int64)].reshape(-1, 3).T
+    tets, region = np.concatenate(tets, axis=1), np.concatenate(region)
+    used = np.unique(tets)
+    if used.size != points.shape[1]:
+        remap = np.full(points.shape[1], -1, dtype=np.int64)
+        remap[used] = np.arange(used.size)
+        points, tets, tris = points[:, used], remap[tets], remap[tris]
+    return LayeredTetMesh(TetMesh(points, tets, tris), region, thickness,
+                          thickness if rigid_substrate else depth, length, d.size - 1)
