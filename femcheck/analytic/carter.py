@@ -105,6 +105,8 @@ class CarterSolution:
         xs, cp = self.normalized_creepage, c / a
         xp = x / a
         inside = np.abs(xp) <= 1.0
+        if self.creepage == 0.0:
+            return np.zeros_like(x)          # free rolling of quasi-identical bodies: no slip anywhere
         if cp <= 0.0:
             s = self.creepage - np.sign(self.creepage) * (2.0 * self.mu * self.p_max / self.modulus) * xp
         else:
