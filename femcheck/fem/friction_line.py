@@ -17,9 +17,11 @@ displacement is u_rel,x.
 * Shift (Cattaneo 1938; Johnson 1985 §7.1-7.2, 2D): the normal load W' is applied with Q' = 0, then the
   tangential force Q' (on the cylinder, +x) under load control, delta_t the unknown; each load step solves
   Coulomb's law on the slip increment s = u_rel,x - u_rel,x(previous step). Monotonic loading: a single
-  tangential step is exact. ``shift`` is the micro-slip part delta_t(Q') - delta_t,stick(Q'), the second term
-  from the same path with full adhesion (mu = inf): the absolute shift of a 2D contact depends on the block
-  size (the half-plane displacement grows like log r), this difference does not.
+  tangential step is exact. ``shift`` is the micro-slip part delta_t(Q') - delta_t,stick(Q') (the absolute
+  shift of a 2D contact depends on the block size, the half-plane displacement growing like log r; this
+  difference does not). The adhered case is also solved (mu = inf, same path); for uncoupled problems the
+  shift is evaluated by the reciprocal theorem (:func:`reciprocal_slip_shift`), which avoids the unresolved
+  edge singularity of the adhered traction, else as the direct difference of the two solves.
 * Steady rolling (Kalker 1990 §2.2; Johnson 1985 §8.2): the contact moves in +x at speed V, material flows
   through it in -x (leading edge at +a). The slip velocity of the cylinder relative to the block per unit V is
 
@@ -208,7 +210,8 @@ def _base_quantities(pair: ContactPair, p) -> dict[str, float]:
             "total_force": float(p.sum())}
 
 
-def _normal_guess(pair: ContactPair, load: float, a_ref: float) -> np.ndarray:
+def _normal_guess(pair: ContactPair, a_ref: float) -> np.ndarray:
+    """Initial contact set of the active-set iteration: the Hertz zone |x| <= a_H."""
     return np.abs(pair.x) <= a_ref
 
 
@@ -226,7 +229,7 @@ def shift_case(pair: ContactPair, load: float, tangential: float, mu: float, a_r
     its, res = 0, 0.0
     path = [(load * k / normal_steps, 0.0) for k in range(1, normal_steps + 1)]
     path += [(load, tangential * k / tangential_steps) for k in range(1, tangential_steps + 1)]
-    contact = _normal_guess(pair, load, a_ref)
+    contact = _normal_guess(pair, a_ref)
     u_normal = np.zeros(n)
     for step, (w_k, q_k) in enumerate(path, start=1):
         # slip increment s = u_rel,x - u_rel,x(previous step), u_rel,x = A_xx q + A_xy p + delta_t
@@ -309,7 +312,7 @@ def rolling_case(pair: ContactPair, load: float, xi: float, mu: float, a_ref: fl
     D = upwind_derivative(pair.x)
     sys = friction.FrictionSystem(pair.g0, -np.ones(n), pair.A_yy, pair.A_yx, np.full(n, float(xi)), None,
                                   -D @ pair.A_xy, -D @ pair.A_xx, load, None, mu)
-    sol = friction.solve(sys, _normal_guess(pair, load, a_ref), tol=tol)
+    sol = friction.solve(sys, _normal_guess(pair, a_ref), tol=tol)
     _check_inside(pair, sol.p, sol.iterations, tol)
     quantities = _base_quantities(pair, sol.p)
     left, right = _zone_edges(pair.x, _stick_margin(pair, sol.p, sol.q, sol.stick, mu))
@@ -405,7 +408,10 @@ def model(params: dict, progress=None):
 
     Quantities (SI): rolling -> creep_force_x (N/m, on the cylinder), adhesion_length (m),
     adhesion_fraction (-), p_max (Pa), half_width (m), total_force (N/m); shift -> shift (m, micro-slip part
-    delta - delta_stick), stick_half_width (m), p_max, half_width, total_force.
+    delta - delta_stick), stick_half_width (m), p_max, half_width, total_force. The shift comes from the
+    reciprocal theorem (:func:`reciprocal_slip_shift`) for uncoupled problems (quasi-identical bodies or
+    ``numerics.fem_coupling = johnson``), else from the direct difference of the partial-slip and adhered
+    solves; stats carry both per level.
     """
     from ..analytic import hertz
 
@@ -432,6 +438,10 @@ def model(params: dict, progress=None):
     quasi = quasi_identical(cyl, blk)
     coupling = ("johnson" if quasi else "full") if s.coupling == "auto" else s.coupling
     normal_steps = s.normal_steps or (1 if (quasi or coupling == "johnson") else 10)
+    # The reciprocal-theorem shift assumes no normal-tangential coupling; with it (dissimilar bodies) the
+    # adhered and partial-slip pressures differ and Spence slip precedes Q', so the shift is then the direct
+    # difference of the two FE solves (edge-position jitter of a few %, see reciprocal_slip_shift).
+    reciprocal = quasi or coupling == "johnson"
 
     levels = []
     fine = None
@@ -445,8 +455,11 @@ def model(params: dict, progress=None):
         if shifting:
             r = shift_case(pair, load, Q, mu, a, normal_steps, s.tangential_steps, s.tol)
             r0 = shift_case(pair, load, Q, np.inf, a, normal_steps, s.tangential_steps, s.tol)
-            extra = {"shift_direct": r.quantities["delta_t"] - r0.quantities["delta_t"],
+            direct = r.quantities["delta_t"] - r0.quantities["delta_t"]
+            extra = {"shift_reciprocal": r.quantities["shift"], "shift_direct": direct,
                      "delta_t": r.quantities["delta_t"], "iterations_adhered": r0.iterations}
+            if not reciprocal:
+                r.quantities["shift"] = direct
             names = SHIFT_QUANTITIES
         else:
             r = rolling_case(pair, load, xi, mu, a, s.tol)
@@ -465,7 +478,9 @@ def model(params: dict, progress=None):
              "formulation": pair.formulations, "finest": dict(q), "levels": levels,
              "block": {"width": s.block_width * a, "depth": s.block_depth * a}, "hertz_half_width": a,
              "derivative": None if shifting else "first-order upwind (Kalker)",
-             "shift_method": "reciprocal theorem with the adhered 2D traction" if shifting else None}
+             "shift_method": (("reciprocal theorem with the adhered 2D traction" if reciprocal else
+                               "direct difference delta(Q') - delta_stick(Q') of two FE solves")
+                              if shifting else None)}
     if s.levels >= 3:
         h = [lv["h"] for lv in levels]
         rich = {name: richardson(h, [lv[name] for lv in levels]) for name in names}
