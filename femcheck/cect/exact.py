@@ -32,6 +32,7 @@ tractions stop changing), as in seed 000 §3.2.2.
 from __future__ import annotations
 
 import time
+import warnings
 from dataclasses import dataclass, field
 from functools import lru_cache, partial
 from typing import Callable
@@ -173,20 +174,23 @@ def _project(z: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
 
 def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarray | None = None,
                      cell_area: float = 1.0, tol: float = 1e-10, max_iter: int = 200,
-                     p0: np.ndarray | None = None, solver: str = "tangential") -> TangentialResult:
+                     p0: np.ndarray | None = None, shift0: np.ndarray | None = None,
+                     solver: str = "tangential") -> TangentialResult:
     """Coulomb friction on C elements with slip s = w + B p (+ delta for a shift problem).
 
     ``B`` (2C x 2C) slip per unit traction (block order px of all elements, then py), ``w`` (2, C) slip at zero
     traction (rigid slip, plus the pressure coupling), ``g`` (C,) traction bound mu pn (Pa). ``load`` (2,) given:
     shift problem, the rigid shift delta (2,) is an unknown and the resultants cell_area * sum(p) = load are
-    imposed. Raises ConvergenceError when |F| / max g has not dropped below ``tol`` after ``max_iter`` steps.
+    imposed. ``p0`` (2, C) and ``shift0`` (2,) warm-start the tractions and the shift. Raises ConvergenceError when |F| / max g has not dropped below ``tol`` after ``max_iter`` steps.
     """
     C = g.size
     gmax = float(g.max()) if C else 0.0
     if C == 0 or gmax <= 0:
         raise InputError("friction.mu", "no element carries a friction bound (mu pn = 0 everywhere)")
     shift_problem = load is not None
-    r = 1.0 / np.maximum(np.diag(B).reshape(2, C), 1e-300)        # per-element regularisation, Pa per slip
+    # per-element regularisation r (Pa per unit slip), one scalar per element: with different r for the two
+    # components the fixed point p = Proj(p - r s) would not make p antiparallel to s in slip
+    r = np.broadcast_to(1.0 / np.maximum(np.diag(B).reshape(2, C).mean(axis=0), 1e-300), (2, C))
     n = 2 * C + (2 if shift_problem else 0)
     # the rigid shift is carried as x_delta = r_mean * delta (Pa) so that all unknowns share one scale and the
     # Newton matrix stays well conditioned
@@ -212,6 +216,8 @@ def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarr
     x = np.zeros(n)
     if p0 is not None:
         x[:2 * C] = np.asarray(p0, dtype=float).ravel()
+        if shift_problem and shift0 is not None:
+            x[2 * C:] = np.asarray(shift0, dtype=float) * r_mean
     # From p = 0 (z = -r w, inside every disc when w = 0) the first Newton step is the full-adhesion solution;
     # later steps move the elements whose adhesion traction exceeds mu pn into slip.
     F, aux = residual_vec(x)
@@ -251,9 +257,15 @@ def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarr
             J[2 * C, :C] = 1.0 / C
             J[2 * C + 1, C:2 * C] = 1.0 / C
         try:
-            dx = sla.solve(J, -F, check_finite=False)
-        except (sla.LinAlgError, ValueError) as exc:
-            raise ConvergenceError(f"{solver} semi-smooth Newton", it, res, tol, f"singular Jacobian ({exc})")
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", sla.LinAlgWarning)
+                dx = sla.solve(J, -F, check_finite=False)
+        except (sla.LinAlgError, sla.LinAlgWarning):
+            # (near-)singular generalised Jacobian, e.g. every element sliding in one direction leaves the
+            # shift along it undetermined: take the least-squares (minimum-norm) Newton step instead
+            dx = sla.lstsq(J, -F, check_finite=False)[0]
+        if not np.all(np.isfinite(dx)):
+            raise ConvergenceError(f"{solver} semi-smooth Newton", it, res, tol, "non-finite Newton step")
         # Non-monotone back-tracking (Grippo, Lampariello & Lucidi 1986): a full step is accepted if it improves
         # on the worst of the last few merits. A monotone search cut most steps here (the active set of the
         # Coulomb law then grows by one ring of elements per step); the full steps converge in a few.
@@ -356,11 +368,11 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
             if np.hypot(*load) > mu * normal_load * (1.0 - 1e-12):
                 raise InputError("load.tangential", f"|Q| = {np.hypot(*load):g} N exceeds the friction limit "
                                  f"mu P = {mu * normal_load:g} N (gross sliding); allowed: < mu P")
-        p0 = None
+        p0 = shift0 = None
         if tang is not None and tang.p.shape[1] == C and _same_cells(prev_cells, cells):
-            p0 = tang.p
+            p0, shift0 = tang.p, tang.shift
         tang = solve_tangential(B, w, mu * pn[cells], load=load, cell_area=g.cell_area, tol=tol, p0=p0,
-                                solver="steady rolling" if rolling else "shift")
+                                shift0=shift0, solver="steady rolling" if rolling else "shift")
         new_px, new_py = np.zeros_like(px), np.zeros_like(py)
         new_px[cells], new_py[cells] = tang.p[0], tang.p[1]
         scale = max(float(np.abs(pn).max()), 1e-300)
