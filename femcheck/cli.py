@@ -233,11 +233,12 @@ def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         cases = stress(sc, workers, on_done=lambda i, c: advance(c.label), scheduler=scheduler)
     t = Table(title=f"{sc.name}: stability sweep ({len(cases)} cases)")
     models = sorted({m for c in cases for m in c.models})
-    for col in ["case", "status"] + [f"{m} p_max err" for m in models] + ["problems"]:
+    first = getattr(problem(sc.kind), "STRESS_QUANTITIES", ("p_max",))[0]
+    for col in ["case", "status"] + [f"{m} {first} err" for m in models] + ["problems"]:
         t.add_column(col)
     for c in cases:
         colour = {"ok": "green", "refused": "yellow"}.get(c.status, "red")
-        errs = [f"{c.models[m]['err_p_max']:.1e}" if "err_p_max" in c.models.get(m, {}) else
+        errs = [f"{c.models[m]['err_' + first]:.1e}" if "err_" + first in c.models.get(m, {}) else
                 c.models.get(m, {}).get("status", "-") for m in models]
         t.add_row(c.label, f"[{colour}]{c.status}[/]", *errs, "; ".join(c.problems))
     out_console.print(t)
