@@ -182,3 +182,26 @@ def test_active_set_reports_non_convergence(pairs):
                                   W, None, MU)
     with pytest.raises(ConvergenceError):
         friction.solve(sys, np.abs(p.x) <= A_H, max_iter=2)
+
+
+@pytest.mark.parametrize("scene, quantities", [("carter-2d", ("creep_force_x", "adhesion_length")),
+                                               ("cattaneo-2d", ("shift", "stick_half_width"))])
+def test_shipped_friction_references_are_current_and_match_the_closed_forms(scene, quantities):
+    # The stored FE references must match the current FE code (else suites would re-solve them): if this fails
+    # after a change to the FE code, regenerate with `femcheck run carter-2d` / `femcheck run cattaneo-2d`.
+    from femcheck import cache, references
+    from femcheck.problems import problem
+    from femcheck.runner import run
+    from femcheck.scene import load_scene
+
+    sc = load_scene(scene)
+    dep = problem(sc.kind).DEPENDS["fem"]
+    ref = references.load(sc.kind, "fem", cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"]))
+    assert ref is not None, f"references/ has no {scene} entry for the current FE code; run femcheck run {scene}"
+    closed = run(sc, models=["analytic"]).models["analytic"].quantities
+    finest_h = ref.stats["levels"][-1]["h"]
+    # issue 6: creep force / shift within 2 % of Carter / 2D Cattaneo, zone lengths within one element
+    assert ref.quantities[quantities[0]] == pytest.approx(closed[quantities[0]], rel=0.02)
+    zone = ref.quantities[quantities[1]]
+    assert abs(zone - closed[quantities[1]]) <= finest_h
+    assert len(ref.stats["levels"]) >= 3

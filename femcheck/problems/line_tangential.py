@@ -6,7 +6,8 @@ cattaneo-2d) -- exactly one of them. Frame and signs: :mod:`femcheck.analytic.ca
 cylinder, the creep force opposes xi; the shift is positive in the direction of Q').
 
 Models: ``exact`` (Kalker's exact theory in 2D, :mod:`femcheck.cect.line`), ``analytic`` (Carter / 2D
-Cattaneo closed forms, quasi-identical bodies), ``full_slip`` (rolling only: traction -mu p sgn(xi)).
+Cattaneo closed forms, quasi-identical bodies), ``full_slip`` (rolling only: traction -mu p sgn(xi)), ``fem``
+(2D plane-strain FE reference with Coulomb friction, :mod:`femcheck.fem.friction_line`; stored reference).
 Quantities: rolling -- ``creep_force_x`` (N/m), ``adhesion_length`` (m), ``adhesion_fraction`` (-);
 shift -- ``shift`` (m, the micro-slip part delta(Q') - delta_stick(Q'), see the conventions), ``stick_half_width``
 (m); both -- ``half_width`` (m), ``p_max`` (Pa), ``total_force`` (N/m, normal).
@@ -20,24 +21,13 @@ import numpy as np
 from ..analytic import carter, hertz
 from ..cect.line import coupling_constant, solve_line_friction
 from ..errors import InputError
+from ..fem import friction_line
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
-MODEL_NAMES = ("exact", "analytic", "full_slip")
-# ---------------------------------------------------------------------------------------------------------
-# FEM reference (place reserved, wired by the lead): femcheck/fem/friction_line.py (helper H3) exposes
-#     model(params: dict, progress=None) -> ModelResult,  FEM_SCHEMA: dict[str, Key],  FEM_DEFAULTS: dict
-# of its numerics.fem_* keys. Wiring, once it exists (not imported here on purpose):
-#     from ..fem import friction_line
-#     MODEL_NAMES += ("fem",);  SCHEMA.update(friction_line.FEM_SCHEMA);  DEFAULTS.update(friction_line.FEM_DEFAULTS)
-#     MODELS["fem"] = lambda scene, progress=None: friction_line.model(scene.params, progress)
-#     DEPENDS["fem"] = {"params": ("geometry.", "load.", "materials.", "friction.", "kinematics.",
-#                                  "numerics.fem_"), "code": ("fem", "problems/line_tangential.py", "materials.py",
-#                                  "result.py"), "reference": True}
-# and "fem" added to the choices of models.run / the scenes' models.run and tolerances (tolerances.fem.*).
-# ---------------------------------------------------------------------------------------------------------
+MODEL_NAMES = ("exact", "analytic", "full_slip", "fem")
 MAX_A_OVER_R = 0.1       # half-space and small-strain limit, as for hertz-line
 QUASI_IDENTICAL_TOL = 1e-9   # |kappa E*| below this: no normal-tangential coupling (Carter applies exactly)
 STRESS_QUANTITIES = ("creep_force_x", "adhesion_length", "shift", "stick_half_width")
@@ -65,10 +55,12 @@ SCHEMA: dict[str, Key] = {
                               hi_closed=True),
     "numerics.exact_max_iter": Key("int", "-", "active-set iterations allowed", lo=2, hi=10000, lo_closed=True,
                                    hi_closed=True),
+    **friction_line.FEM_SCHEMA,
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 
 DEFAULTS: dict[str, Any] = {
+    **friction_line.FEM_DEFAULTS,
     "materials.cylinder.rigid": False,
     "kinematics.speed": 1.0,
     "models.run": list(MODEL_NAMES),
@@ -81,7 +73,14 @@ DEFAULTS: dict[str, Any] = {
     "numerics.exact_max_iter": 200,
 }
 REQUIRED = ("geometry.radius", "load.per_length", "materials.block.E", "materials.block.nu", "friction.mu")
-DEPENDS: dict[str, dict] = {}
+# The FE reference (2D plane strain, Coulomb friction, Richardson over mesh levels) is stored in references/ and
+# re-solved only when its inputs or the FE code below change.
+DEPENDS: dict[str, dict] = {
+    "fem": {"params": ("geometry.", "load.", "materials.", "friction.", "kinematics.xi", "numerics.fem_"),
+            "code": ("fem/friction_line.py", "fem/friction.py", "fem/mesh2d_full.py", "fem/mesh2d.py",
+                     "fem/elasticity.py", "fem/convergence.py", "qoi.py", "materials.py", "result.py"),
+            "reference": True},
+}
 
 
 def problem_type(params: dict[str, Any]) -> str:
@@ -217,7 +216,14 @@ def full_slip(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("full_slip", quantities=q, stats={"problem": "rolling"}, fields=fields)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"exact": exact, "analytic": analytic, "full_slip": full_slip}
+def fem(scene: Scene, progress=None) -> ModelResult:
+    """2D plane-strain FE reference with Coulomb friction (:mod:`femcheck.fem.friction_line`): Cattaneo shift
+    under load control or steady rolling in the Eulerian contact frame, Richardson over mesh levels."""
+    return friction_line.model(scene.params, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"exact": exact, "analytic": analytic, "full_slip": full_slip,
+                                                 "fem": fem}
 
 
 def load_of(scene: Scene) -> float:
