@@ -1,0 +1,417 @@
+"""Layered (coated) contact: a rigid cylinder (line, plane strain) or sphere (point) pressed on a layer
+(E1, nu1, thickness h) perfectly bonded to an elastic substrate (E2, nu2) or to a rigid base (layer-line,
+layer-point, coated-roller; issue 5).
+
+The contact is line contact when the scene gives ``load.per_length`` (N/m) and point contact when it gives
+``load.normal`` (N). The layer is given either dimensionally (``layer.E``, ``layer.thickness``) or by the
+dimensionless ``layer.E_ratio`` = E1 / E2 and ``layer.h_over_a`` = h / a_H, a_H the Hertz half-width (line) or
+contact radius (point) of the rigid indenter on the uncoated substrate; exactly one of each pair.
+:func:`resolve_layer` turns them into ``layer.E`` and ``layer.thickness`` once, for every model.
+
+Several coatings in one scene (coated-roller): sections ``[coatings.<name>]`` with ``E``, ``nu``, ``thickness``
+instead of ``[layer]``; every model then runs each coating and reports its quantities with the suffix
+``_<name>`` (as srb_contact does with ``_inner`` / ``_outer``).
+
+Models:
+  ``bem``         layered half-space boundary-integral model (:mod:`femcheck.bem.layered`: Chen / O'Sullivan &
+                  King frequency response, DC-FFT, preconditioned Polonsky-Keer CG); the reference for now.
+  ``thin_layer``  Johnson's thin layer on a rigid base (:mod:`femcheck.analytic.thin_layer`; compressible for
+                  nu1 <= 0.499, squeeze-film form with a frictionless top above): ignores the substrate's
+                  compliance, valid for h << a on a substrate much stiffer than the layer.
+  ``analytic``    homogeneous Hertz of the uncoated substrate (for contrast: what the coating changes).
+  ``fem``         NOT wired here (see the marked block near MODELS): the layered FE references are
+                  ``femcheck/fem/layered_line.py`` and ``femcheck/fem/layered_point.py`` (helper H5), each exposing
+                  ``model(params, progress=None) -> ModelResult`` and ``FEM_SCHEMA`` / ``FEM_DEFAULTS``.
+
+Quantities (SI): line ``p_max`` (Pa), ``half_width`` (m), ``total_force`` (N/m); point ``p_max``,
+``semi_axis_x``, ``semi_axis_y`` (m), ``total_force`` (N).
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from ..analytic import hertz, thin_layer
+from ..bem import layered
+from ..bem.halfspace import grid as bem_grid
+from ..errors import ConvergenceError, InputError
+from ..qoi import contact_edge
+from ..result import ModelResult
+from ..scene import Key, Scene, tolerance_key
+
+MODEL_NAMES = ("bem", "thin_layer", "analytic")
+MAX_A_OVER_R = 0.1            # half-space and small-strain assumptions of every model here
+
+SCHEMA: dict[str, Key] = {
+    "geometry.radius": Key("float", "m", "radius R of the rigid cylinder (line) or sphere (point)", lo=0.0),
+    "load.per_length": Key("float", "N/m", "normal load per unit length W' (line contact)", lo=0.0),
+    "load.normal": Key("float", "N", "normal load P (point contact)", lo=0.0),
+    "layer.E": Key("float", "Pa", "Young's modulus of the layer E1", lo=0.0),
+    "layer.E_ratio": Key("float", "-", "E1 / E2 (instead of layer.E; elastic substrate only)", lo=0.0),
+    "layer.nu": Key("float", "-", "Poisson's ratio of the layer", lo=-1.0, hi=0.5, hi_closed=True),
+    "layer.thickness": Key("float", "m", "layer thickness h", lo=0.0),
+    "layer.h_over_a": Key("float", "-", "h / Hertz half-width or radius on the uncoated substrate (instead of "
+                          "layer.thickness; elastic substrate only)", lo=0.0),
+    "coatings.*.E": Key("float", "Pa", "Young's modulus of a coating (multi-coating scenes)", lo=0.0),
+    "coatings.*.nu": Key("float", "-", "Poisson's ratio of a coating", lo=-1.0, hi=0.5, hi_closed=True),
+    "coatings.*.thickness": Key("float", "m", "thickness of a coating", lo=0.0),
+    "materials.substrate.E": Key("float", "Pa", "Young's modulus of the substrate E2", lo=0.0),
+    "materials.substrate.nu": Key("float", "-", "Poisson's ratio of the substrate", lo=-1.0, hi=0.5),
+    "materials.substrate.rigid": Key("bool", "-", "rigid base under the layer (E2, nu2 ignored)"),
+    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
+    "models.references": Key("list", "-", "models every other model is compared against", choices=MODEL_NAMES),
+    "numerics.bem_elements": Key("int", "-", "BEM strips over the domain (line)", lo=32, hi=2**18,
+                                 lo_closed=True, hi_closed=True),
+    "numerics.bem_cells": Key("int", "-", "BEM cells per side (point; odd puts a cell on the centre)", lo=9,
+                              hi=1025, lo_closed=True, hi_closed=True),
+    "numerics.bem_domain": Key("float", "a", "BEM domain half-size / contact size found by a coarse pre-solve",
+                               lo=1.05, hi=10.0, hi_closed=True),
+    "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
+    "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+}
+DEFAULTS: dict[str, Any] = {
+    "materials.substrate.rigid": False,
+    "models.run": list(MODEL_NAMES),
+    "models.references": ["bem"],
+    "numerics.bem_elements": 1024,
+    "numerics.bem_cells": 65,
+    "numerics.bem_domain": 1.25,
+    "numerics.bem_tol": 1e-10,
+}
+REQUIRED = ("geometry.radius",)
+DEPENDS: dict[str, dict] = {}
+
+LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Parameters
+# ---------------------------------------------------------------------------------------------------------------
+
+def geometry_of(params: dict[str, Any]) -> str:
+    """"line" (load.per_length given) or "point" (load.normal given)."""
+    return "line" if "load.per_length" in params else "point"
+
+
+def load_value(params: dict[str, Any]) -> float:
+    return float(params["load.per_length"] if geometry_of(params) == "line" else params["load.normal"])
+
+
+def coating_names(params: dict[str, Any]) -> list[str]:
+    """Names of the ``[coatings.<name>]`` sections, in the order of the scene."""
+    names: list[str] = []
+    for k in params:
+        if k.startswith("coatings."):
+            name = k.split(".")[1]
+            if name not in names:
+                names.append(name)
+    return names
+
+
+def _substrate_modulus(params: dict[str, Any]) -> float:
+    """E2* = E2 / (1 - nu2^2) (Pa) of the substrate (the indenter is rigid)."""
+    return params["materials.substrate.E"] / (1.0 - params["materials.substrate.nu"] ** 2)
+
+
+def substrate_hertz(params: dict[str, Any]):
+    """Hertz contact of the rigid indenter on the uncoated substrate (line or circular), SI."""
+    R, w = params["geometry.radius"], load_value(params)
+    if geometry_of(params) == "line":
+        return hertz.line_contact(w, R, _substrate_modulus(params))
+    return hertz.elliptic_contact(w, R, R, _substrate_modulus(params))
+
+
+def _hertz_size(h) -> float:
+    return h.half_width if isinstance(h, hertz.LineContact) else h.semi_axis_x
+
+
+def resolve_layer(params: dict[str, Any]) -> dict[str, Any]:
+    """A copy of ``params`` in which the layer is given by ``layer.E`` and ``layer.thickness`` (the keys every
+    model reads): ``layer.E = layer.E_ratio * E2`` and ``layer.thickness = layer.h_over_a * a_H`` with a_H the
+    Hertz half-width (line) or contact radius (point) of the rigid indenter on the uncoated substrate. The
+    dimensionless keys are dropped. Raises InputError unless exactly one key of each pair is given."""
+    out = dict(params)
+    for dim, rel, what in (("layer.E", "layer.E_ratio", "E_substrate"),
+                           ("layer.thickness", "layer.h_over_a", "Hertz size on the substrate")):
+        if (dim in params) == (rel in params):
+            raise InputError(dim, f"give exactly one of {dim} and {rel} ({rel} = {dim} / {what})")
+        if rel in params and params.get("materials.substrate.rigid", False):
+            raise InputError(rel, "needs an elastic substrate (no Hertz solution or E ratio on a rigid base); "
+                             f"give {dim} instead")
+    if "layer.E_ratio" in out:
+        out["layer.E"] = out.pop("layer.E_ratio") * params["materials.substrate.E"]
+    if "layer.h_over_a" in out:
+        out["layer.thickness"] = out.pop("layer.h_over_a") * _hertz_size(substrate_hertz(params))
+    return out
+
+
+def layer_params(params: dict[str, Any], coating: str | None = None) -> dict[str, Any]:
+    """The single-layer parameters of one coating (``coating`` given) or of the ``[layer]`` section, resolved."""
+    if coating is None:
+        return resolve_layer(params)
+    out = {k: v for k, v in params.items() if not k.startswith("coatings.")}
+    for key in ("E", "nu", "thickness"):
+        out[f"layer.{key}"] = params[f"coatings.{coating}.{key}"]
+    return out
+
+
+def solid_of(params: dict[str, Any]) -> layered.LayeredSolid:
+    """The :class:`LayeredSolid` of resolved single-layer parameters."""
+    rigid = bool(params.get("materials.substrate.rigid", False))
+    return layered.LayeredSolid(params["layer.E"], params["layer.nu"], params["layer.thickness"],
+                                params.get("materials.substrate.E", 1.0), params.get("materials.substrate.nu", 0.0),
+                                rigid)
+
+
+def validate(params: dict[str, Any]) -> None:
+    """Exactly one load key; an elastic substrate needs E and nu; either [layer] or [coatings.*]; a/R small."""
+    if ("load.per_length" in params) == ("load.normal" in params):
+        raise InputError("load.per_length", "give exactly one of load.per_length (line contact) and load.normal "
+                         "(point contact)")
+    rigid = params.get("materials.substrate.rigid", False)
+    if not rigid:
+        for k in ("materials.substrate.E", "materials.substrate.nu"):
+            if k not in params:
+                raise InputError(k, "required for an elastic substrate (or set materials.substrate.rigid = true)")
+    names = coating_names(params)
+    if names:
+        if any(k in params for k in LAYER_KEYS):
+            raise InputError("layer", "give either a [layer] section or [coatings.<name>] sections, not both")
+        for name in names:
+            for key in ("E", "nu", "thickness"):
+                if f"coatings.{name}.{key}" not in params:
+                    raise InputError(f"coatings.{name}.{key}", "required for every coating")
+        layers = [layer_params(params, n) for n in names]
+    else:
+        if "layer.nu" not in params:
+            raise InputError("layer.nu", "required")
+        layers = [resolve_layer(params)]
+    for lp in layers:
+        solid_of(lp)                     # range checks with the key names
+        if "analytic" in params.get("models.run", ()) and rigid:
+            raise InputError("models.run", "analytic (Hertz of the uncoated substrate) needs an elastic substrate; "
+                             "drop it from models.run")
+    # small contact against the radius: the largest contact is the softer of the layer and substrate half-spaces
+    for lp in layers:
+        a_max = _size_bound(lp)
+        if a_max / params["geometry.radius"] > MAX_A_OVER_R:
+            raise InputError(next(k for k in ("load.per_length", "load.normal") if k in params),
+                             f"{load_value(params):g} gives a contact size up to a/R = {a_max / params['geometry.radius']:.3g}"
+                             f" > {MAX_A_OVER_R} (half-space and small-strain assumptions fail); lower the load")
+
+
+def _size_bound(lp: dict[str, Any]) -> float:
+    """An upper estimate (m) of the contact size: the Hertz size of the softer of the layer and the substrate
+    as half-spaces (a layered solid's compliance lies between the two at every wavenumber)."""
+    solid = solid_of(lp)
+    e = min(solid.modulus_layer, solid.modulus_substrate)
+    R, w = lp["geometry.radius"], load_value(lp)
+    if geometry_of(lp) == "line":
+        return hertz.line_contact(w, R, e).half_width
+    return hertz.elliptic_contact(w, R, R, e).semi_axis_x
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Contact edges
+# ---------------------------------------------------------------------------------------------------------------
+
+def layered_edge(x: np.ndarray, p: np.ndarray, points: int = 5) -> float:
+    """Contact edge (m) on the side of increasing x, for profiles whose edge is either square-root like (an
+    elastic half-space, thick layers: p^2 linear in the distance to the edge) or linear (a layer much thinner
+    than a cell on a stiff base: Johnson's Winkler layer, p linear). Both are fitted by a straight line over the
+    last ``points`` loaded points and the better fit (smaller relative misfit) gives the edge; the square-root
+    case is then refined by :func:`femcheck.qoi.contact_edge` (the shared estimator of every other model)."""
+    x, p = np.asarray(x, dtype=float), np.asarray(p, dtype=float)
+    loaded = np.flatnonzero(p > 0)
+    if loaded.size < points + 1:
+        return contact_edge(x, p)
+    sel = loaded[-points:]
+    misfit, roots = [], []
+    for q in (p[sel] ** 2, p[sel]):
+        c, res, *_ = np.polyfit(x[sel], q / q.max(), 1, full=True)
+        misfit.append(float(res[0]) if res.size else 0.0)
+        roots.append(-c[1] / c[0] if c[0] < 0 else np.nan)
+    if misfit[1] < misfit[0] and np.isfinite(roots[1]):
+        k = sel[-1]
+        return float(np.clip(roots[1], x[k - 1], x[min(k + 1, x.size - 1)]))
+    return contact_edge(x, p)
+
+
+def _half_width(x: np.ndarray, p: np.ndarray) -> float:
+    return 0.5 * (layered_edge(x, p) + layered_edge(-x[::-1], p[::-1]))
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Models on one layer
+# ---------------------------------------------------------------------------------------------------------------
+
+COARSE = {"line": 256, "point": 33}
+
+
+def _bem_one(lp: dict[str, Any], progress=None) -> ModelResult:
+    """Layered BEM for one layer: a coarse pre-solve over 1.5 x the size bound finds the contact size a_c, then
+    the final grid covers numerics.bem_domain x (a_c + one coarse cell)."""
+    solid = solid_of(lp)
+    R, w, geo = lp["geometry.radius"], load_value(lp), geometry_of(lp)
+    tol = lp["numerics.bem_tol"]
+
+    def run(half: float, n: int, tol_: float):
+        if geo == "line":
+            sol = layered.solve_line(solid, lambda x: x * x / (2.0 * R), w, half, n, tol=tol_)
+            return sol, sol.x, sol.result.pressure
+        g = bem_grid(half, half, n, n)
+        sol = layered.solve_point(solid, g, lambda X, Y: (X * X + Y * Y) / (2.0 * R), w, tol=tol_)
+        return sol, sol.x, sol.result.pressure[:, n // 2]
+
+    half = 1.5 * _size_bound(lp)
+    for _ in range(4):
+        coarse, xc, pc = run(half, COARSE[geo], max(tol, 1e-8))
+        if not layered.touches_edge(coarse.result.contact):
+            break
+        half *= 2.0                  # the size bound was not one: widen and try again
+    else:
+        raise ConvergenceError("layered BEM", coarse.result.iterations, coarse.result.residual, tol,
+                               "contact reaches the domain edge even on a domain 8x the Hertz bound")
+    a_c = _half_width(xc, pc) + (xc[1] - xc[0])
+    half = lp["numerics.bem_domain"] * a_c
+    n = lp["numerics.bem_elements"] if geo == "line" else lp["numerics.bem_cells"]
+    sol, x, pline = run(half, n, tol)
+    r = sol.result
+    if layered.touches_edge(r.contact):
+        raise ConvergenceError("layered BEM", r.iterations, r.residual, tol,
+                               "contact reaches the edge of the BEM domain; raise numerics.bem_domain")
+    stats = {**sol.stats, "domain_half_length": half, "cells": n, "spacing": list(sol.spacing),
+             "coarse_iterations": coarse.result.iterations, "contact_cells": int(r.contact.sum()),
+             "h_over_dx": solid.thickness / sol.spacing[0], "solver": "polonsky_keer", "convolution": "dcfft"}
+    if geo == "line":
+        q = {"p_max": float(r.pressure.max()), "half_width": _half_width(x, r.pressure), "total_force": r.load}
+        fields = {"x": x, "pressure": r.pressure}
+    else:
+        y = sol.y
+        q = {"p_max": float(r.pressure.max()), "semi_axis_x": _half_width(x, pline),
+             "semi_axis_y": _half_width(y, r.pressure[x.size // 2, :]), "total_force": r.load}
+        fields = {"x": x, "pressure": pline, "pressure_map": r.pressure, "map_x": x, "map_y": y}
+    return ModelResult("bem", quantities=q, stats=stats, fields=fields)
+
+
+def _thin_one(lp: dict[str, Any], progress=None) -> ModelResult:
+    """Johnson's thin layer on a rigid base (the substrate's compliance is ignored by this model)."""
+    geo = "line" if geometry_of(lp) == "line" else "circular"
+    E, nu, b, R, w = lp["layer.E"], lp["layer.nu"], lp["layer.thickness"], lp["geometry.radius"], load_value(lp)
+    if nu <= thin_layer.NU_COMPRESSIBLE_MAX:
+        c = thin_layer.compressible(E, nu, b, R, w, geo)
+    else:
+        c = thin_layer.incompressible(E, b, R, w, geo, top="frictionless")
+    x = np.linspace(-1.5 * c.a, 1.5 * c.a, 601)
+    q = {"p_max": c.p_max, "total_force": w}
+    q.update({"half_width": c.a} if geo == "line" else {"semi_axis_x": c.a, "semi_axis_y": c.a})
+    stats = {"form": c.model, "h_over_a": b / c.a, "substrate": "rigid (model assumption)"}
+    return ModelResult("thin_layer", quantities=q, stats=stats, fields={"x": x, "pressure": c.pressure(x)})
+
+
+def _analytic_one(lp: dict[str, Any], progress=None) -> ModelResult:
+    """Hertz of the rigid indenter on the uncoated substrate."""
+    h = substrate_hertz(lp)
+    a = _hertz_size(h)
+    x = np.linspace(-1.5 * a, 1.5 * a, 601)
+    if isinstance(h, hertz.LineContact):
+        q = {"p_max": h.p_max, "half_width": h.half_width, "total_force": h.load}
+        p = h.pressure(x)
+    else:
+        q = {"p_max": h.p_max, "semi_axis_x": h.semi_axis_x, "semi_axis_y": h.semi_axis_y, "total_force": h.load}
+        p = h.pressure(x, 0 * x)
+    return ModelResult("analytic", quantities=q, stats={"E_star": h.modulus}, fields={"x": x, "pressure": p})
+
+
+SINGLE: dict[str, Callable[..., ModelResult]] = {"bem": _bem_one, "thin_layer": _thin_one, "analytic": _analytic_one}
+
+
+def _model(name: str) -> Callable[..., ModelResult]:
+    def run(scene: Scene, progress=None) -> ModelResult:
+        names = coating_names(scene.params)
+        if not names:
+            res = SINGLE[name](resolve_layer(scene.params), progress)
+            res.stats.setdefault("layer", {"E": resolve_layer(scene.params)["layer.E"],
+                                           "thickness": resolve_layer(scene.params)["layer.thickness"]})
+            return res
+        q, stats, fields = {}, {}, {}
+        for c in names:
+            if progress:
+                progress(f"{name}: {c}")
+            res = SINGLE[name](layer_params(scene.params, c), progress)
+            q.update({f"{k}_{c}": v for k, v in res.quantities.items() if k != "total_force"})
+            stats[c] = res.stats
+            for k in ("x", "pressure"):
+                fields[k if c == names[0] else f"{k}_{c}"] = res.fields[k]
+            if abs(res.quantities["total_force"] / load_value(scene.params) - 1.0) > 1e-6:
+                raise RuntimeError(f"{c}: total force {res.quantities['total_force']:.6g} != applied load")
+        q["total_force"] = load_value(scene.params)     # every coating checked just above
+        return ModelResult(name, quantities=q, stats=stats, fields=fields)
+
+    run.__doc__ = SINGLE[name].__doc__
+    return run
+
+
+# ---- FEM: the lead wires it here -------------------------------------------------------------------------------
+# MODELS["fem"] = a wrapper calling femcheck.fem.layered_line.model (line) or femcheck.fem.layered_point.model
+# (point) with resolve_layer(scene.params) / layer_params(scene.params, coating); add "fem" to MODEL_NAMES,
+# merge FEM_SCHEMA / FEM_DEFAULTS into SCHEMA / DEFAULTS and declare DEPENDS["fem"] (reference = True).
+# Not imported here on purpose: those modules are written in parallel (helper H5).
+# -----------------------------------------------------------------------------------------------------------------
+MODELS: dict[str, Callable[..., ModelResult]] = {n: _model(n) for n in MODEL_NAMES}
+
+
+def load_of(scene: Scene) -> float:
+    return load_value(scene.params)
+
+
+def profile_scale(scene: Scene) -> float:
+    """Hertz size of the stiffest reading: the smallest of the substrate Hertz and the layers' size bounds."""
+    names = coating_names(scene.params)
+    layers = [layer_params(scene.params, c) for c in names] if names else [resolve_layer(scene.params)]
+    return min(_size_bound(lp) for lp in layers)
+
+
+def stress_cases(scene: Scene) -> list:
+    """Very thin (h/a = 1e-3) and very thick (h/a = 100) layers, E1/E2 from 0.01 to 100, nu -> 0.5 in the
+    layer and the substrate, an incompressible layer on a rigid base, and their corners."""
+    from ..stability import StressCase
+
+    if coating_names(scene.params):
+        w = load_value(scene.params)
+        key = "load.per_length" if geometry_of(scene.params) == "line" else "load.normal"
+        return [StressCase(f"load={w * f:.3g}", {key: w * f}) for f in (1e-3, 1e-2, 0.1, 1.0)]
+    drop = {k: None for k in LAYER_KEYS if k != "layer.nu"}
+    cases = []
+    rigid = scene.params.get("materials.substrate.rigid", False)
+    if not rigid:
+        lp = resolve_layer(scene.params)
+        ratio0 = lp["layer.E"] / scene["materials.substrate.E"]
+        h0 = lp["layer.thickness"] / _hertz_size(substrate_hertz(scene.params))
+        for hr in (1e-3, 1e-2, 10.0, 100.0):
+            cases.append(StressCase(f"h/a={hr:g}", {**drop, "layer.h_over_a": hr, "layer.E_ratio": ratio0}))
+        for er in (0.01, 0.1, 10.0, 100.0):
+            cases.append(StressCase(f"E1/E2={er:g}", {**drop, "layer.h_over_a": h0, "layer.E_ratio": er}))
+        for hr, er in ((1e-3, 100.0), (1e-3, 0.01), (100.0, 0.01), (100.0, 100.0)):
+            cases.append(StressCase(f"h/a={hr:g}, E1/E2={er:g}", {**drop, "layer.h_over_a": hr, "layer.E_ratio": er}))
+        for nu in (0.49, 0.4999, 0.5):
+            cases.append(StressCase(f"layer nu={nu:g}", {"layer.nu": nu}))
+        cases.append(StressCase("substrate nu=0.4999", {"materials.substrate.nu": 0.4999}))
+        cases.append(StressCase("rigid substrate", {"materials.substrate.rigid": True,
+                                                   **drop, "layer.E": lp["layer.E"],
+                                                   "layer.thickness": lp["layer.thickness"],
+                                                   "models.run": ["bem", "thin_layer"]}))
+    else:
+        lp = resolve_layer(scene.params)
+        for f in (1e-3, 1e-2, 10.0, 100.0):
+            cases.append(StressCase(f"h x {f:g}", {"layer.thickness": lp["layer.thickness"] * f}))
+        for nu in (0.49, 0.4999, 0.5):
+            cases.append(StressCase(f"layer nu={nu:g}", {"layer.nu": nu}))
+    return cases
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    if geometry_of(scene.params) == "line":
+        return {"bem": [{"numerics.bem_elements": n} for n in (64, 128, 256, 512, 1024, 2048, 4096, 8192)]}
+    return {"bem": [{"numerics.bem_cells": n} for n in (17, 33, 49, 65, 97, 129, 193, 257)]}
