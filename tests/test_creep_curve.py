@@ -1,0 +1,42 @@
+"""creep-curve scene: the simplified rolling-contact models against Kalker's exact theory (issue 6)."""
+import pytest
+
+from femcheck.runner import run
+from femcheck.scene import load_scene
+
+
+@pytest.fixture(scope="module")
+def combined():
+    # the scene: a/b = 0.40, xi = 0.005, eta = 0.002, phi = 10 1/m, partial slip
+    return run(load_scene("creep-curve"), models=["exact", "fastsim", "linear", "full_slip"]).models
+
+
+def test_fastsim_within_its_band_of_the_exact_theory(combined):
+    # FASTSIM (three flexibilities, parabolic bound): the band commonly quoted for its creep forces is about
+    # 10 %; benchmarks/simplified_vs_exact.py measures 0.2-7.2 % over 24 cases (3 shapes x 8 creepages). The
+    # single weighted flexibility falls outside that band at combined creepage (measured -31 % here).
+    ex, fs = combined["exact"].quantities, combined["fastsim"].quantities
+    for q in ("creep_force_x", "creep_force_y"):
+        assert fs[q] == pytest.approx(ex[q], rel=0.10)
+    weighted = run(load_scene("creep-curve", {"numerics.fastsim_flexibility": "weighted"}),
+                   models=["fastsim"]).models["fastsim"].quantities
+    assert abs(weighted["creep_force_x"] / ex["creep_force_x"] - 1) > 0.2
+
+
+def test_models_bracket_the_exact_creep_force(combined):
+    # linear theory has no traction bound (over-estimates), full slip has no adhesion (over-estimates too, here):
+    # both must lie above the exact force in magnitude, and the exact force below mu N
+    ex = combined["exact"].quantities
+    fx = abs(ex["creep_force_x"])
+    assert fx < abs(combined["linear"].quantities["creep_force_x"])
+    assert fx < abs(combined["full_slip"].quantities["creep_force_x"])
+    assert (ex["creep_force_x"] ** 2 + ex["creep_force_y"] ** 2) ** 0.5 < 0.3 * 1000.0
+
+
+def test_exact_tends_to_linear_theory_at_small_creepage():
+    # at xi = 5e-4 (5 % of saturation) the exact force equals linear theory to within the creep-coefficient
+    # extrapolation error and the slip of a few leading-edge cells (measured 0.0 %)
+    m = run(load_scene("creep-curve", {"kinematics.xi": 5e-4, "kinematics.eta": 0.0, "kinematics.phi": 0.0}),
+            models=["exact", "linear"]).models
+    assert m["exact"].quantities["creep_force_x"] == pytest.approx(m["linear"].quantities["creep_force_x"],
+                                                                   rel=0.01)
