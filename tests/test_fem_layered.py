@@ -175,3 +175,38 @@ def test_bad_input_names_the_key(key, value):
     with pytest.raises(InputError) as err:
         L.model(p)
     assert err.value.key == key
+
+
+# ---------------------------------------------------------------- 3D smoke level
+
+
+def test_3d_thin_layer_on_rigid_base_matches_johnson_circular():
+    # Smoke-level 3D check (two coarse levels, a few seconds): rigid sphere on a thin compressible layer
+    # bonded to a rigid base, t/a = 0.1, against Johnson's circular thin-layer solution (analytic/thin_layer.py,
+    # exponent 1/4 by load balance). Issue 5 asks 5 % for t/a <= 0.1; measured at the a/8 level: p_max -0.15 %,
+    # semi-axes -1.4 % / -1.3 %. Also checks the load balance of the quarter model and that both symmetry
+    # axes give the same radius (axisymmetric scene) within the mesh's resolution (h/a = 1/8: 2 %).
+    from femcheck.fem import layered_point as P
+
+    E, nu, t = 206e9, 0.3, 2e-6
+    a = t / 0.1
+    load = np.pi * thin_layer.constrained_modulus(E, nu) * a**4 / (4 * R * t)
+    ref = thin_layer.compressible(E, nu, t, R, load, "circular")
+    r = P.model({"layer.E": E, "layer.nu": nu, "layer.thickness": t, "materials.substrate.rigid": True,
+                 "geometry.radius": R, "load.normal": load, "numerics.fem_levels": 2,
+                 "numerics.fem_h_contact": 0.125})
+    q = r.quantities
+    assert q["p_max"] == pytest.approx(ref.p_max, rel=0.05)
+    assert q["semi_axis_x"] == pytest.approx(ref.a, rel=0.05)
+    assert q["semi_axis_y"] == pytest.approx(ref.a, rel=0.05)
+    assert q["semi_axis_x"] == pytest.approx(q["semi_axis_y"], rel=0.02)
+    assert q["total_force"] == pytest.approx(load, rel=1e-8)
+
+
+def test_3d_refuses_nu_where_p1_locks():
+    from femcheck.fem import layered_point as P
+
+    with pytest.raises(InputError) as err:
+        P.model({"layer.E": 200e9, "layer.nu": 0.49, "layer.thickness": 1e-6, "materials.substrate.rigid": True,
+                 "geometry.radius": R, "load.normal": 10.0})
+    assert err.value.key == "layer.nu"

@@ -57,7 +57,7 @@ class FEMLayeredPointSettings:
     ``grading``, cap ``h_max``; quarter block ``block`` a_ref on each side and deep (deeper than 2 t)."""
 
     levels: int = 3
-    h_contact: float = 0.125
+    h_contact: float = 0.25
     grading: float = 0.25
     h_max: float = 2.0
     contact_zone: float = 1.3
@@ -233,7 +233,7 @@ FEM_SCHEMA: dict[str, Key] = {
 }
 FEM_DEFAULTS: dict[str, Any] = {
     "numerics.fem_levels": 3,
-    "numerics.fem_h_contact": 0.125,
+    "numerics.fem_h_contact": 0.25,
     "numerics.fem_grading": 0.25,
     "numerics.fem_h_max": 2.0,
     "numerics.fem_contact_zone": 1.3,
