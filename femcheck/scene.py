@@ -160,10 +160,26 @@ class Scene:
         return elastic(self.params, body)
 
     def with_overrides(self, overrides: dict[str, Any]) -> "Scene":
-        """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry)."""
-        merged = {**self.params, **overrides}
-        return build_scene(self.name, self.kind, self.description, self.tags,
-                           {k: v for k, v in merged.items() if v is not None}, self.source)
+        """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry), and setting
+        one key of a group of alternatives (the kind's ``ALTERNATIVES``) removes the others."""
+        merged = _apply_overrides(self.kind, self.params, overrides)
+        return build_scene(self.name, self.kind, self.description, self.tags, merged, self.source)
+
+
+def _apply_overrides(kind: str, params: dict[str, Any], overrides: dict[str, Any]) -> dict[str, Any]:
+    """``params`` updated with ``overrides``. A kind may declare ``ALTERNATIVES``: groups of keys of which a
+    scene gives one (e.g. ``layer.thickness`` or ``layer.h_over_a``); overriding one member drops the members
+    the overrides do not name, so ``--set layer.h_over_a=0.1`` works on a scene written with a thickness."""
+    from .problems import problem
+
+    merged = dict(params)
+    for group in getattr(problem(kind), "ALTERNATIVES", ()):
+        if any(k in overrides for k in group):
+            for k in group:
+                if k not in overrides:
+                    merged.pop(k, None)
+    merged.update(overrides)
+    return {k: v for k, v in merged.items() if v is not None}
 
 
 def _flatten(d: dict, prefix: str = "") -> dict[str, Any]:
@@ -238,7 +254,6 @@ def load_scene(scene: str | Path, overrides: dict[str, Any] | None = None) -> Sc
     meta = {k: data.pop(k) for k in ("name", "kind", "description", "tags") if k in data}
     if "kind" not in meta:
         raise InputError("kind", f"{path}: a scene needs a top-level kind")
-    raw = _flatten(data)
-    raw.update(overrides or {})
+    raw = _apply_overrides(str(meta["kind"]), _flatten(data), overrides or {})
     return build_scene(str(meta.get("name", path.stem)), str(meta["kind"]), str(meta.get("description", "")),
                        list(meta.get("tags", [])), raw, str(path))

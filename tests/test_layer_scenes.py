@@ -52,7 +52,7 @@ def test_dimensionless_layer_keys_resolve_to_the_dimensional_ones():
 
 
 @pytest.mark.parametrize("over,key", [
-    ({"layer.h_over_a": 0.5}, "layer.thickness"),                          # both of a pair
+    ({"layer.h_over_a": 0.5, "layer.thickness": 1e-5}, "layer.thickness"),  # both of a pair
     ({"layer.E": None}, "layer.E"),                                        # neither of a pair
     ({"materials.substrate.rigid": True, "layer.thickness": None, "layer.h_over_a": 0.5,
       "models.run": "bem"}, "layer.h_over_a"),                           # no Hertz size on a rigid base
@@ -60,6 +60,7 @@ def test_dimensionless_layer_keys_resolve_to_the_dimensional_ones():
     ({"layer.nu": 0.6}, "layer.nu"),
 ])
 def test_bad_layer_input_names_the_key(over, key):
+    # (an override naming one key of a pair replaces the other: test_override_replaces_its_alternative)
     with pytest.raises(InputError) as err:
         load_scene("layer-line").with_overrides(over)
     assert err.value.key == key
@@ -87,3 +88,14 @@ def test_stress_cases_converge(label):
     assert m.status == "ok", m.error
     assert m.quantities["total_force"] == pytest.approx(1e5, rel=1e-9)
     assert np.isfinite(m.quantities["p_max"]) and m.quantities["half_width"] > 0
+
+
+def test_override_replaces_its_alternative():
+    # layer-line is written with layer.thickness and layer.E; --set layer.h_over_a / layer.E_ratio replace them
+    sc = load_scene("layer-line", {"layer.h_over_a": 0.5, "layer.E_ratio": 2.0})
+    assert "layer.thickness" not in sc.params and "layer.E" not in sc.params
+    a_h = hertz.line_contact(sc["load.per_length"], sc["geometry.radius"],
+                             sc["materials.substrate.E"] / (1 - sc["materials.substrate.nu"] ** 2)).half_width
+    lp = layer_contact.resolve_layer(sc.params)
+    assert lp["layer.thickness"] == pytest.approx(0.5 * a_h, rel=1e-12)
+    assert lp["layer.E"] == pytest.approx(2.0 * sc["materials.substrate.E"], rel=1e-12)

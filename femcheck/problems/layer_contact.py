@@ -83,6 +83,8 @@ REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {}
 
 LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
+# setting one key of a pair (--set, a map axis) replaces the other (femcheck.scene._apply_overrides)
+ALTERNATIVES = (("layer.thickness", "layer.h_over_a"), ("layer.E", "layer.E_ratio"))
 
 
 # ---------------------------------------------------------------------------------------------------------------
