@@ -82,6 +82,7 @@ class LayeredLineLevel:
     time_s: float
     formulations: dict[str, str] = field(default_factory=dict)
     mesh: LayeredTriMesh | None = None
+    edge_resolution: float = 0.0      # node interval (m) when the edge is pinned to a node, else 0
 
 
 @dataclass(frozen=True)
@@ -92,6 +93,8 @@ class ContactEdge:
     edge: float
     alpha: float
     misfit: float
+    clipped: bool = False      # the fit's root fell outside the node intervals: the edge is pinned to a node
+    spacing: float = 0.0       # node interval at the edge (m): the resolution of a pinned edge
 
 
 EDGE_EXPONENTS = np.linspace(0.5, 2.0, 61)
@@ -106,7 +109,8 @@ def contact_edge_power(x: np.ndarray, p: np.ndarray, band: float = 0.15, min_poi
     alpha in [1/2, 2] p^(1/alpha) is fitted by least squares as a linear function of x^2 over the loaded nodes
     within ``band`` of the loaded extent from the last loaded node (at least ``min_points``), the alpha with the
     smallest relative misfit is kept, and its root x^2 = a^2 gives the edge, clipped to the two node intervals
-    around the last loaded node. Exact on the three closed forms; the quadratic-in-p^2 fit of
+    around the last loaded node (``clipped`` then says the edge is only known to the node spacing: a steep
+    edge, e.g. a stiff thin layer on a soft substrate, falls within one element). Exact on the three closed forms; the quadratic-in-p^2 fit of
     :func:`femcheck.qoi.contact_edge` (Hertz only) was 1.4 % short on a thin layer (t/a = 0.02) here.
     """
     x = np.asarray(x, dtype=float)
@@ -129,7 +133,9 @@ def contact_edge_power(x: np.ndarray, p: np.ndarray, band: float = 0.15, min_poi
     j = int(np.argmin(misfit))
     c0, c1 = coef[:, j]
     edge = np.sqrt(max(x[k] ** 2 - c0 / c1, 0.0)) if c1 < 0 else 0.5 * (lo + hi)
-    return ContactEdge(float(np.clip(edge, lo, hi)), float(EDGE_EXPONENTS[j]), float(misfit[j]))
+    clipped = bool(edge <= lo or edge >= hi)
+    return ContactEdge(float(np.clip(edge, lo, hi)), float(EDGE_EXPONENTS[j]), float(misfit[j]), clipped,
+                       float(hi - x[k]))
 
 
 def inverse_lame_lambda(m: Elastic) -> float:
@@ -239,13 +245,27 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
         raise ConvergenceError("FEM layered line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
     h = s.h_contact * a_ref / 2**level
-    return LayeredLineLevel(h, x, p, float(p.max()), contact_edge_power(x, p).edge, 2.0 * float(sol.lam.sum()), sol.delta,
+    edge = contact_edge_power(x, p)
+    return LayeredLineLevel(h, x, p, float(p.max()), edge.edge, 2.0 * float(sol.lam.sum()), sol.delta,
                             body.n_dofs, int(mesh.t.shape[1]), lm.layer_rows, sol.iterations, sol.residual,
-                            time.perf_counter() - t0, forms, lm)
+                            time.perf_counter() - t0, forms, lm, edge.spacing if edge.clipped else 0.0)
 
 
-def extrapolate(levels: list[LayeredLineLevel], quantity: str) -> Extrapolation:
-    return richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])
+def extrapolate(levels: list, quantity: str, resolution: str | None = None) -> Extrapolation:
+    """Richardson over the levels (:func:`femcheck.fem.convergence.richardson`). For an edge quantity,
+    ``resolution`` names the levels' attribute holding the node interval of a pinned edge: if any of the last
+    three levels is pinned, the sequence is a staircase, not a converging series, so no order is claimed, the
+    value is the finest level's and the error estimate is at least the finest edge interval (never the
+    spurious 0 of three equal pinned values)."""
+    ext = richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])
+    if resolution is None:
+        return ext
+    res = [getattr(lv, resolution) for lv in levels[-3:]]
+    if max(res) > 0:
+        fine = getattr(levels[-1], quantity)
+        step = abs(fine - getattr(levels[-2], quantity))
+        return Extrapolation(fine, None, float(max(step, res[-1], ext.error_estimate)), fine)
+    return ext
 
 
 def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float) -> float:
@@ -388,12 +408,13 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "block": {"width": s.block_width * a_ref, "depth": max(s.block_depth * a_ref, 2.0 * t)},
         "levels": [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_dofs": lv.n_dofs,
                     "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
-                    "iterations": lv.iterations, "residual": lv.residual, "total_force": lv.total_force,
-                    "time_s": lv.time_s} for lv in levels],
+                    "edge_pinned_to_node": lv.edge_resolution > 0, "iterations": lv.iterations,
+                    "residual": lv.residual, "total_force": lv.total_force, "time_s": lv.time_s} for lv in levels],
     }
     q = dict(finest)
     if s.levels >= 3:
-        rich = {name: extrapolate(levels, name) for name in quantities}
+        rich = {"p_max": extrapolate(levels, "p_max"),
+                "half_width": extrapolate(levels, "half_width", "edge_resolution")}
         stats["richardson"] = {k: v.as_dict() for k, v in rich.items()}
         q = {k: v.value for k, v in rich.items()}
     q["total_force"] = fine.total_force

@@ -39,9 +39,10 @@ from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
-from .convergence import Extrapolation, richardson
+from .convergence import Extrapolation
 from .elasticity3d import Solid, elasticity_solver
 from .layered_line import contact_edge_power, materials_of
+from .layered_line import extrapolate as extrapolate_line
 from .mesh_layered import LAYER, SUBSTRATE, LayeredTetMesh, LayerSizing, coated_block_quarter
 from .quarter_block import tributary_areas
 from .rigid_contact import active_set
@@ -90,6 +91,8 @@ class LayeredPointLevel:
     times: dict[str, float] = field(default_factory=dict)
     x: np.ndarray | None = None        # x-axis contact nodes (m) and their pressures (Pa)
     p: np.ndarray | None = None
+    resolution_x: float = 0.0          # node interval (m) when an edge is pinned to a node, else 0
+    resolution_y: float = 0.0
 
 
 def assemble_layered_solid(lm: LayeredTetMesh, materials: dict[int, Elastic]) -> Solid:
@@ -165,21 +168,27 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     on_y = np.flatnonzero(np.abs(xc) < tiny)
     ox, oy = on_x[np.argsort(xc[on_x])], on_y[np.argsort(yc[on_y])]
     loaded_r = np.sqrt(r2[p > 0].max())
+    ex, ey = contact_edge_power(xc[ox], p[ox]), contact_edge_power(yc[oy], p[oy])
     return LayeredPointLevel(
         h=s.h_contact * a_ref / 2**level, p_max=centre_peak(xc, yc, p, 0.5 * loaded_r),
-        semi_axis_x=contact_edge_power(xc[ox], p[ox]).edge, semi_axis_y=contact_edge_power(yc[oy], p[oy]).edge,
+        semi_axis_x=ex.edge, semi_axis_y=ey.edge,
         p_max_nodal=float(p.max()), approach=sol.delta, total_force=4.0 * float(sol.lam.sum()),
         n_nodes=mesh.n_nodes, n_dofs=int(free.size), n_elements=int(mesh.tets.shape[1]), layer_rows=lm.layer_rows,
         active_nodes=int(sol.active.sum()), iterations=sol.iterations, cg_iterations=sol.cg_iterations,
         residual=sol.residual, solver=type(lin).__name__, time_s=time.perf_counter() - t0, times=times,
-        x=xc[ox], p=p[ox])
+        x=xc[ox], p=p[ox], resolution_x=ex.spacing if ex.clipped else 0.0,
+        resolution_y=ey.spacing if ey.clipped else 0.0)
 
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y")
 
 
+RESOLUTION = {"p_max": None, "semi_axis_x": "resolution_x", "semi_axis_y": "resolution_y"}
+
+
 def extrapolate(levels: list[LayeredPointLevel], quantity: str) -> Extrapolation:
-    return richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])
+    """:func:`femcheck.fem.layered_line.extrapolate` (pinned edges give no order and a node-interval error)."""
+    return extrapolate_line(levels, quantity, RESOLUTION[quantity])
 
 
 def radius_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float) -> float:
@@ -288,7 +297,8 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "levels": [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_nodes": lv.n_nodes,
                     "n_dofs": lv.n_dofs, "n_elements": lv.n_elements,
                     **{q: getattr(lv, q) for q in QUANTITIES}, "p_max_nodal": lv.p_max_nodal,
-                    "approach": lv.approach, "active_nodes": lv.active_nodes, "iterations": lv.iterations,
+                    "approach": lv.approach, "edge_pinned_to_node": bool(lv.resolution_x or lv.resolution_y),
+                    "active_nodes": lv.active_nodes, "iterations": lv.iterations,
                     "cg_iterations": lv.cg_iterations, "residual": lv.residual, "linear_solver": lv.solver,
                     "total_force": lv.total_force, "time_s": lv.time_s, **lv.times} for lv in levels],
     }
