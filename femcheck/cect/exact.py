@@ -47,6 +47,11 @@ from ..errors import ConvergenceError, InputError
 from .influence import CombinedConstants, influence
 
 NONMONOTONE_MEMORY = 8
+TANGENTIAL_SOLVERS = ("auto", "dense", "fft")
+# "auto" switches to the matrix-free solver above this many contact elements: the dense Newton matrix costs
+# O(C^3) per step (41 x 41 grid, C ~ 1000: ~5 s) while GMRES with FFT products costs O(C log C) per iteration;
+# measured on creep-curve, the two cost about the same near C = 300 (benchmarks/exact_scaling.py)
+AUTO_FFT_ELEMENTS = 300
 Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 
@@ -111,7 +116,8 @@ class TangentialResult:
 
     ``p`` (2, C) tractions px, py (Pa) on the C contact elements, ``slip`` (2, C) relative slip s (rolling: slip
     velocity / V, -; shift: m), ``stick`` (C,) adhesion mask, ``shift`` (2,) rigid shift (m; shift problems),
-    ``iterations`` Newton steps, ``residual`` max |F| / max g, ``converged``.
+    ``iterations`` Newton steps, ``residual`` max |F| / max g, ``converged``, ``linear_iterations`` GMRES
+    iterations summed over the Newton steps (matrix-free solver only; 0 for the dense LU).
     """
 
     p: np.ndarray
@@ -121,6 +127,7 @@ class TangentialResult:
     iterations: int
     residual: float
     converged: bool = True
+    linear_iterations: int = 0
 
 
 @dataclass
@@ -310,7 +317,7 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
                   creepages: tuple[float, float, float] | None = None,
                   tangential_load: tuple[float, float] | None = None, rolling_speed: float = 1.0,
                   tol: float = 1e-9, normal_tol: float = 1e-10, max_outer: int = 30,
-                  outer_tol: float = 1e-7) -> ExactResult:
+                  outer_tol: float = 1e-7, tangential_solver: str = "auto") -> ExactResult:
     """Normal + tangential contact of two half-spaces on grid ``g`` (Kalker's exact theory, planar).
 
     ``gap(x, y)`` undeformed gap (m); ``constants`` combined G, nu, K; ``normal_load`` (N); ``mu`` Coulomb friction
@@ -318,6 +325,9 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
     ``tangential_load`` = (Fx, Fy) (shift; the resultant friction force on body 1, N). Quasi-identical bodies
     (K = 0): one normal and one tangential solve (Johnson's process); otherwise Panagiotopoulos' process until
     the relative change of the tractions drops below ``outer_tol`` (ConvergenceError after ``max_outer``).
+    ``tangential_solver``: "dense" (Newton matrix assembled and LU-factorised, :func:`solve_tangential`),
+    "fft" (matrix-free Newton-GMRES with DC-FFT products, :mod:`femcheck.cect.tangential_fft`) or "auto" (fft
+    above ``AUTO_FFT_ELEMENTS`` contact elements). Both solve the same discrete equations.
     """
     if (creepages is None) == (tangential_load is None):
         raise ValueError("give exactly one of creepages (steady rolling) or tangential_load (shift)")
@@ -325,6 +335,8 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
         raise InputError("load.normal", f"{normal_load:g} N; allowed: > 0")
     if not mu > 0:
         raise InputError("friction.mu", f"{mu:g}; allowed: > 0")
+    if tangential_solver not in TANGENTIAL_SOLVERS:
+        raise InputError("numerics.exact_solver", f"{tangential_solver!r}; allowed: {', '.join(TANGENTIAL_SOLVERS)}")
     t0 = time.perf_counter()
     rolling = creepages is not None
     X, Y = g.mesh()
@@ -350,7 +362,7 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
         _check_edge(contact)
         cells = np.nonzero(contact)
         C = cells[0].size
-        B = dense_operator(g, cells, constants, "xy", "xy", rolling)
+        use_fft = tangential_solver == "fft" or (tangential_solver == "auto" and C > AUTO_FFT_ELEMENTS)
         xc, yc = X[cells], Y[cells]
         if rolling:
             xi, eta, phi = creepages
@@ -371,8 +383,15 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
         p0 = shift0 = None
         if tang is not None and tang.p.shape[1] == C and _same_cells(prev_cells, cells):
             p0, shift0 = tang.p, tang.shift
-        tang = solve_tangential(B, w, mu * pn[cells], load=load, cell_area=g.cell_area, tol=tol, p0=p0,
-                                shift0=shift0, solver="steady rolling" if rolling else "shift")
+        name = "steady rolling" if rolling else "shift"
+        if use_fft:
+            from .tangential_fft import solve_tangential_fft
+            tang = solve_tangential_fft(g, cells, constants, w, mu * pn[cells], rolling, load=load, tol=tol,
+                                        p0=p0, shift0=shift0, solver=name)
+        else:
+            B = dense_operator(g, cells, constants, "xy", "xy", rolling)
+            tang = solve_tangential(B, w, mu * pn[cells], load=load, cell_area=g.cell_area, tol=tol, p0=p0,
+                                    shift0=shift0, solver=name)
         new_px, new_py = np.zeros_like(px), np.zeros_like(py)
         new_px[cells], new_py[cells] = tang.p[0], tang.p[1]
         scale = max(float(np.abs(pn).max()), 1e-300)
@@ -380,6 +399,7 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
         px, py = new_px, new_py
         prev_cells = cells
         history.append({"outer": outer, "normal_iterations": normal.iterations, "newton_iterations": tang.iterations,
+                        "gmres_iterations": tang.linear_iterations,
                         "traction_change": change, "contact_elements": int(C)})
         if not coupled or (outer > 1 and change < outer_tol):
             break
@@ -400,6 +420,8 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
     stats = {"grid": [g.nx, g.ny], "dx": g.dx, "dy": g.dy, "contact_elements": int(contact.sum()),
              "process": "Panagiotopoulos" if coupled else "Johnson", "outer_iterations": len(history),
              "newton_iterations": int(sum(h_["newton_iterations"] for h_ in history)),
+             "tangential_solver": "fft" if use_fft else "dense",
+             "gmres_iterations": int(sum(h_["gmres_iterations"] for h_ in history)),
              "normal_iterations": int(sum(h_["normal_iterations"] for h_ in history)),
              "normal_residual": float(normal.residual), "tangential_residual": float(tang.residual),
              "history": history, "time_s": time.perf_counter() - t0}
