@@ -52,30 +52,42 @@ class CreepCoefficients:
     order: dict = field(default_factory=dict)
 
 
+SOLVERS = ("auto", "dense", "fft")
+AUTO_FFT_CELLS = 40      # "auto": dense LU up to 40 x 40 elements (C ~ 1250), matrix-free GMRES above
+
+
 @lru_cache(maxsize=64)
-def coefficients_on_grid(a_over_b: float, poisson: float, n: int) -> dict[str, float]:
+def coefficients_on_grid(a_over_b: float, poisson: float, n: int, solver: str = "auto") -> dict[str, float]:
     """C11, C22, C23, C33 from one full-adhesion solve on an n x n grid (see module docstring). Also returns the
     second estimate of C23 from the spin moment under eta (``c32``; equal to C23 in the continuum by Betti's
-    reciprocity), a discretisation check. Cached: the coefficients cost a dense 2C x 2C factorisation."""
+    reciprocity), a discretisation check. ``solver``: "dense" (2C x 2C LU), "fft" (matrix-free GMRES with DC-FFT
+    products and the upwind-sum + circulant preconditioner, :func:`femcheck.cect.tangential_fft.solve_adhesion`;
+    relative residual 1e-11) or "auto" (fft for n > AUTO_FFT_CELLS). Cached."""
     if not 0.0 < a_over_b < np.inf:
         raise InputError("a_over_b", f"{a_over_b}; allowed: > 0")
     if not -1.0 < poisson <= 0.5:
         raise InputError("nu", f"{poisson}; allowed: (-1, 0.5]")
     if n < 4:
         raise InputError("n", f"{n}; allowed: >= 4 elements per axis")
+    if solver not in SOLVERS:
+        raise InputError("numerics.exact_solver", f"{solver!r}; allowed: {', '.join(SOLVERS)}")
     a, b = np.sqrt(a_over_b), 1.0 / np.sqrt(a_over_b)          # c = sqrt(a b) = 1
     g = Grid(n, n, 2.0 * a / n, 2.0 * b / n)
     X, Y = g.mesh()
     inside = (X / a) ** 2 + (Y / b) ** 2 < 1.0
     cells = np.nonzero(inside)
     constants = CombinedConstants(1.0, float(poisson), 0.0)
-    B = dense_operator(g, cells, constants, "xy", "xy", rolling=True)
     xc, yc = X[cells], Y[cells]
     C = xc.size
     one, zero = np.ones(C), np.zeros(C)
     # rigid slip w = (xi - phi y, eta + phi x) for unit xi, eta, phi; full adhesion: B p = -w
     W = np.stack([np.concatenate([one, zero]), np.concatenate([zero, one]), np.concatenate([-yc, xc])], axis=1)
-    P = sla.solve(B, -W, check_finite=False)
+    if solver == "dense" or (solver == "auto" and n <= AUTO_FFT_CELLS):
+        B = dense_operator(g, cells, constants, "xy", "xy", rolling=True)
+        P = sla.solve(B, -W, check_finite=False)
+    else:
+        from .tangential_fft import solve_adhesion
+        P = solve_adhesion(g, cells, constants, W.T.reshape(3, 2, C), rolling=True)[0].reshape(3, 2 * C).T
     area = g.cell_area
     fx = P[:C].sum(axis=0) * area
     fy = P[C:].sum(axis=0) * area
@@ -117,15 +129,17 @@ def richardson(values: list[float], ratio: float = 2.0) -> tuple[float, float, f
 
 
 @lru_cache(maxsize=64)
-def creep_coefficients(a_over_b: float, poisson: float, grids: tuple[int, ...] = (12, 24, 48)) -> CreepCoefficients:
+def creep_coefficients(a_over_b: float, poisson: float, grids: tuple[int, ...] = (12, 24, 48),
+                       solver: str = "auto") -> CreepCoefficients:
     """Kalker's C11, C22, C23, C33 at a/b = ``a_over_b`` and nu = ``poisson`` from full-adhesion solves on the
-    n x n ``grids`` (each twice the previous), Richardson-extrapolated (see :func:`richardson`). Cached on its
-    arguments (lru_cache): the linear and FASTSIM models of a scene reuse one computation."""
+    n x n ``grids`` (each twice the previous), Richardson-extrapolated (see :func:`richardson`); ``solver`` as
+    in :func:`coefficients_on_grid`. Cached on its arguments (lru_cache): the linear and FASTSIM models of a
+    scene reuse one computation."""
     grids = tuple(int(n) for n in grids)
     if len(grids) < 2 or any(grids[k + 1] != 2 * grids[k] for k in range(len(grids) - 1)):
         raise InputError("numerics.creep_grids", f"{grids}; allowed: two or more element counts, each twice the "
                          "previous (Richardson extrapolation)")
-    per_grid = [coefficients_on_grid(float(a_over_b), float(poisson), n) for n in grids]
+    per_grid = [coefficients_on_grid(float(a_over_b), float(poisson), n, solver) for n in grids]
     raw = {k: [r[k] for r in per_grid] for k in COEFFICIENTS}
     out, err, order = {}, {}, {}
     for k in COEFFICIENTS:

@@ -25,10 +25,12 @@ is never formed:
   circulant inverse. Measured on full-adhesion solves (a/b = 1, nu = 0.25): 28, 31, 38, 43 GMRES iterations on
   24^2, 32^2, 64^2, 128^2 grids to 1e-10 (471 unpreconditioned at 64^2).
 * **Newton system**: J = I - Pi + Pi r dS/dp (dS/dp the operator above, Pi the derivative of the projection on
-  the friction disc). Its right preconditioner treats every contact element as adhering (approximate inverse
-  of r dS/dp above) and then restores, on sliding elements, the component normal to the friction circle, whose
-  Newton row is the identity. GMRES tolerance follows an inexact-Newton forcing sequence (Eisenstat & Walker
-  1996, choice 2) bounded by ``linear_rtol_max``.
+  the friction disc). Its right preconditioner applies the approximate inverse of r dS/dp above on the
+  adhering elements; a sliding element gets the identity along the normal of its friction circle (its Newton
+  row there) and its own diagonal coefficient along the tangent. The GMRES tolerance follows an inexact-Newton
+  forcing sequence (Eisenstat & Walker 1996, choice 2) bounded by ``linear_rtol_max``. GMRES iterations per
+  Newton step measured on a partial-slip rolling case (xi, eta, phi all set): 14 at 41^2, 25 at 129^2, 32 at
+  257^2.
 
 Units: tractions Pa, slip rolling - (slip velocity / V) or shift m, grids m.
 """
@@ -323,6 +325,7 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
         pxy = np.where(inside, 0.0, -fac * ex * ey)
         sliding = ~inside
         nx_, ny_ = np.where(sliding, ex, 0.0), np.where(sliding, ey, 0.0)
+        tx_, ty_ = -ny_, nx_
 
         def jac(v: np.ndarray) -> np.ndarray:
             vp = v[:2 * C].reshape(2, C)
@@ -336,14 +339,20 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
                 out = np.concatenate([out, vp.sum(axis=1) / C])
             return out
 
+        # local tangential Newton coefficient of a sliding element: (1 - f) + f r S_tt(0), f = g/|z|
+        local = np.where(sliding, (1.0 - fac) + fac * r * (tx_ ** 2 * op.self_coefficients[0]
+                                                           + ty_ ** 2 * op.self_coefficients[1]), 1.0)
+
         def precondition(v: np.ndarray) -> np.ndarray:
             vp = v[:2 * C].reshape(2, C)
-            # every element treated as adhering: r S dq = v  ->  dq ~ M(v / r)
-            dq = R.gather(prec(R.scatter(vp / r)))
-            # sliding: the row along the normal n of the friction circle is the identity
+            # adhesion rows r S dq = v: the approximate inverse of S applied to the adhesion residual alone
+            dq = R.gather(prec(R.scatter(np.where(sliding, 0.0, vp) / r)))
+            # sliding rows: identity along the normal n of the friction circle, the element's own coefficient
+            # along the tangent t (coupling to the other elements neglected). Feeding sliding residuals to the
+            # adhesion inverse instead took 2.4x more GMRES iterations at 129^2 under spin
             vn = nx_ * vp[0] + ny_ * vp[1]
-            qn = nx_ * dq[0] + ny_ * dq[1]
-            dq = dq + np.stack([nx_ * (vn - qn), ny_ * (vn - qn)])
+            vt = (tx_ * vp[0] + ty_ * vp[1]) / local
+            dq = np.where(sliding, np.stack([nx_ * vn + tx_ * vt, ny_ * vn + ty_ * vt]), dq)
             out = dq.ravel()
             if shift_problem:
                 out = np.concatenate([out, v[2 * C:]])

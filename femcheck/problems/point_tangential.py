@@ -37,6 +37,7 @@ from ..scene import Key, Scene, check_body_pair, elastic, material_keys, toleran
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "strip")
 ROLLING_ONLY = ("linear", "fastsim", "full_slip", "strip")
 MAX_A_OVER_R = 0.1
+MAX_DENSE_CELLS = 61             # dense Newton matrix of a 61 x 61 grid: ~2900 elements, 0.5 GB, minutes per step
 QUASI_IDENTICAL_TOL = 1e-9       # |K| below this: no normal-tangential coupling
 
 SCHEMA: dict[str, Key] = {
@@ -56,14 +57,19 @@ SCHEMA: dict[str, Key] = {
     "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
     "models.references": Key("list", "-", "models every other model is compared against",
                              choices=("analytic", "exact")),
-    "numerics.exact_cells": Key("int", "-", "exact solver: elements per axis of the potential contact grid",
-                                lo=9, hi=61, lo_closed=True, hi_closed=True),
+    "numerics.exact_cells": Key("int", "-", "exact solver: elements per axis of the potential contact grid "
+                                f"(dense solver: at most {MAX_DENSE_CELLS})", lo=9, hi=513, lo_closed=True,
+                                hi_closed=True),
+    "numerics.exact_solver": Key("str", "-", "exact solver's tangential problem: dense (LU of the Newton matrix), "
+                                 "fft (matrix-free Newton-GMRES with DC-FFT products) or auto (fft above "
+                                 "300 contact elements)", choices=("auto", "dense", "fft")),
     "numerics.exact_domain": Key("float", "a_H", "exact solver: grid half-width / Hertz semi-axis (each axis)",
                                  lo=1.02, hi=3.0, hi_closed=True),
     "numerics.exact_tol": Key("float", "-", "exact solver: Coulomb residual / max(mu p)", lo=0.0, hi=1e-4,
                               hi_closed=True),
     "numerics.creep_cells": Key("int", "-", "creep coefficients: elements per axis of the coarsest of three "
-                                "grids (n, 2n, 4n; Richardson)", lo=6, hi=16, lo_closed=True, hi_closed=True),
+                                "grids (n, 2n, 4n; Richardson; grids above 40 solved matrix-free)", lo=6, hi=64,
+                                lo_closed=True, hi_closed=True),
     "numerics.fastsim_cells": Key("int", "-", "FASTSIM: cells per strip and strips", lo=2, hi=1000,
                                   lo_closed=True, hi_closed=True),
     "numerics.fastsim_flexibility": Key("str", "-", "FASTSIM: separate (L1, L2, L3 for the xi, eta, phi terms; "
@@ -86,6 +92,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.exact_cells": 31,
     "numerics.exact_domain": 1.1,
     "numerics.exact_tol": 1e-9,
+    "numerics.exact_solver": "auto",
     "numerics.creep_cells": 12,
     "numerics.fastsim_cells": 40,
     # three flexibilities and Kalker's parabolic bound: measured against the exact solver on creep-curve, the
@@ -139,6 +146,9 @@ def validate(params: dict[str, Any]) -> None:
                          "kinematics.xi|eta|phi (steady rolling)" + (" -- both are set" if has_q else
                                                                      " -- neither is set"))
     check_body_pair(params, ("body1", "body2"))
+    if params.get("numerics.exact_solver") == "dense" and params.get("numerics.exact_cells", 0) > MAX_DENSE_CELLS:
+        raise InputError("numerics.exact_cells", f"{params['numerics.exact_cells']} with numerics.exact_solver = dense;"
+                         f" allowed: <= {MAX_DENSE_CELLS} (or exact_solver = fft / auto)")
     if params["friction.mu"] <= 0:
         raise InputError("friction.mu", f"{params['friction.mu']:g}; allowed: (0, 10]")
     if has_q:
@@ -171,10 +181,12 @@ def exact(scene: Scene, progress=None) -> ModelResult:
     kind = problem_type(p)
     if kind == "shift":
         sol = solve_contact(g, gap, cc, p["load.normal"], p["friction.mu"],
-                            tangential_load=(-p["load.tangential"], 0.0), tol=p["numerics.exact_tol"])
+                            tangential_load=(-p["load.tangential"], 0.0), tol=p["numerics.exact_tol"],
+                            tangential_solver=p["numerics.exact_solver"])
     else:
         sol = solve_contact(g, gap, cc, p["load.normal"], p["friction.mu"], creepages=creepages(p),
-                            rolling_speed=p["kinematics.speed"], tol=p["numerics.exact_tol"])
+                            rolling_speed=p["kinematics.speed"], tol=p["numerics.exact_tol"],
+                            tangential_solver=p["numerics.exact_solver"])
     X, Y = g.mesh()
     fit = ellipse_fit(X, Y, sol.pressure)
     q = {"p_max": float(sol.pressure.max()), "total_force": sol.normal_force, "semi_axis_x": fit["semi_axis_x"],
@@ -189,7 +201,9 @@ def exact(scene: Scene, progress=None) -> ModelResult:
                  adhesion_fraction=sol.adhesion_fraction)
     stats = {**{k: v for k, v in sol.stats.items() if k != "history"}, "problem": kind,
              "coupling_K": cc.coupling, "G": cc.shear_modulus, "nu": cc.poisson,
-             "a_over_dx": h.semi_axis_x / g.dx, "solver": "semi-smooth Newton (dense LU) + Polonsky-Keer CG"}
+             "a_over_dx": h.semi_axis_x / g.dx,
+             "solver": ("semi-smooth Newton (matrix-free FGMRES, DC-FFT)" if sol.stats["tangential_solver"] == "fft"
+                        else "semi-smooth Newton (dense LU)") + " + Polonsky-Keer CG"}
     if kind == "rolling":
         stats["frictional_power"] = sol.frictional_power
     j = g.ny // 2
@@ -364,9 +378,10 @@ def stress_cases(scene: Scene) -> list:
 
 
 def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
-    """Exact solver: elements per axis (dense Newton: O(n^6) per step, so 51 is the practical top); FASTSIM:
-    cells per strip and strips."""
-    sweeps = {"exact": [{"numerics.exact_cells": n} for n in (15, 21, 31, 41, 51)]}
+    """Exact solver: elements per axis (the dense Newton costs O(n^6) per step and the matrix-free one
+    O(n^2 log n) per GMRES iteration: "auto" switches to it above 300 contact elements, so the sweep reaches
+    129 x 129); FASTSIM: cells per strip and strips."""
+    sweeps = {"exact": [{"numerics.exact_cells": n} for n in (15, 21, 31, 41, 65, 129)]}
     if problem_type(scene.params) == "rolling":
         sweeps["fastsim"] = [{"numerics.fastsim_cells": n} for n in (5, 10, 20, 40, 80, 160)]
         sweeps["strip"] = [{"numerics.strips": n} for n in (10, 20, 50, 100, 200, 400)]
