@@ -49,8 +49,8 @@ from .influence import CombinedConstants, influence
 NONMONOTONE_MEMORY = 8
 TANGENTIAL_SOLVERS = ("auto", "dense", "fft")
 # "auto" switches to the matrix-free solver above this many contact elements: the dense Newton matrix costs
-# O(C^3) per step (41 x 41 grid, C ~ 1000: ~5 s) while GMRES with FFT products costs O(C log C) per iteration;
-# measured on creep-curve, the two cost about the same near C = 300 (benchmarks/exact_scaling.py)
+# O(C^3) per step while GMRES with FFT products costs O(C log C) per iteration. Measured on creep-curve
+# (benchmarks/exact_scaling.py): equal at C = 168 (0.05 s), dense 18x slower at C = 680 and 50x at C = 1512
 AUTO_FFT_ELEMENTS = 300
 Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
