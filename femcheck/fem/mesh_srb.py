@@ -244,13 +244,12 @@ def _meridian_face(occ, R: float, half: float, z_far: float) -> int:
     """Face in the plane x = 0 between the arc z = R - sqrt(R^2 - y^2), |y| <= half, and the line z = z_far."""
     za = R - np.sqrt(R * R - half * half)
     p1 = occ.addPoint(0.0, -half, za)
-    p0 = occ.addPoint(0.0, 0.0, 0.0)
     p2 = occ.addPoint(0.0, half, za)
     c = occ.addPoint(0.0, 0.0, R)
     p3 = occ.addPoint(0.0, half, z_far)
     p4 = occ.addPoint(0.0, -half, z_far)
-    arc1, arc2 = occ.addCircleArc(p1, c, p0), occ.addCircleArc(p0, c, p2)
-    loop = occ.addCurveLoop([arc1, arc2, occ.addLine(p2, p3), occ.addLine(p3, p4), occ.addLine(p4, p1)])
+    arc = occ.addCircleArc(p1, c, p2)                     # the short arc, through the contact point
+    loop = occ.addCurveLoop([arc, occ.addLine(p2, p3), occ.addLine(p3, p4), occ.addLine(p4, p1)])
     return occ.addPlaneSurface([loop])
 
 

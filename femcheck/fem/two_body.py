@@ -137,12 +137,14 @@ class Projection:
 
 
 def project(x: np.ndarray, points: np.ndarray, tris: np.ndarray, normals: np.ndarray, k: int = 12,
-            tol: float = 1e-6) -> Projection:
+            tol: float = 1e-3) -> Projection:
     """Project ``x`` (3, n) on the triangles ``tris`` of ``points`` with unit ``normals`` (vectorised).
 
     Candidate faces: the ``k`` nearest centroids (KD-tree). On each, x_p = x - ((x - x0) . n) n and the
-    barycentrics of x_p; a face accepts the point when all barycentrics are >= -tol. Among accepting faces the
-    one with the smallest |distance| wins; a point no face accepts is not valid (off the master surface)."""
+    barycentrics of x_p; a face accepts the point when all barycentrics are >= -tol (a point over a ridge of a
+    faceted convex surface, or on a symmetry plane, projects just outside every facet; it is clipped to the
+    nearest). Among accepting faces the one with the smallest |distance| wins; a point no face accepts is not
+    valid (off the master surface)."""
     cent = points[:, tris].mean(axis=1)
     k = min(k, tris.shape[1])
     _, cand = cKDTree(cent.T).query(x.T, k=k)
