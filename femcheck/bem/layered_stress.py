@@ -412,14 +412,24 @@ class LayeredStressField:
             raise InputError("depths", "the interface plane was not evaluated (depth_planes(..., interface=True))")
         return out
 
-    def maxima(self) -> dict[str, float]:
+    def maxima(self, where: str = "all") -> dict[str, float]:
         """Maxima (Pa) and depths (m): von Mises, Tresca, |tau_xz| (refined by parabolas through neighbours of
         the same material), and on the interface the largest shear traction |tau_xz| (3D: the resultant) and
-        normal traction |sigma_z| (from the layer side; the traction is continuous)."""
+        normal traction |sigma_z| (from the layer side; the traction is continuous).
+
+        ``where`` = "all", "layer" or "substrate" restricts the von Mises / Tresca / tau_xz maxima to the planes of
+        that material. As h -> 0 the substrate's field tends to the homogeneous substrate's, but the layer's
+        in-plane stresses do not (they follow the substrate's strain with the layer's moduli): a thin coating can
+        hold the largest von Mises stress at the surface."""
+        if where not in ("all", "layer", "substrate"):
+            raise InputError("where", f"{where!r}; allowed all, layer, substrate")
+        sel = np.ones(self.depths.size, bool) if where == "all" else (self.in_layer == (where == "layer"))
+        if not sel.any():
+            raise InputError("where", f"no depth plane in the {where}")
         out = {}
         for key, vals in (("von_mises_max", self.von_mises()), ("tau_max", self.tresca()),
                           ("tau_xz_max", np.abs(self.components["tau_xz"]))):
-            m = _refined_max(vals, self.depths, self.in_layer, self.x, self.y)
+            m = _refined_max(vals[sel], self.depths[sel], self.in_layer[sel], self.x, self.y)
             out[key], out[f"{key}_depth"], out[f"{key}_x"] = m["value"], m["depth"], m["x"]
         try:
             side = self.interface()["layer"]
