@@ -68,6 +68,8 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_domain": Key("float", "a", "BEM domain half-size / contact size found by a coarse pre-solve",
                                lo=1.05, hi=10.0, hi_closed=True),
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
+    "outputs.subsurface_stress": Key("bool", "-", "sub-surface stresses of the bem model in layer and substrate "
+                                     "(femcheck.bem.layered_stress), interface both sides"),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -78,6 +80,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_cells": 65,
     "numerics.bem_domain": 1.25,
     "numerics.bem_tol": 1e-10,
+    "outputs.subsurface_stress": False,
 }
 REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {}
@@ -294,7 +297,37 @@ def _bem_one(lp: dict[str, Any], progress=None) -> ModelResult:
         q = {"p_max": float(r.pressure.max()), "semi_axis_x": _half_width(x, pline),
              "semi_axis_y": _half_width(y, r.pressure[x.size // 2, :]), "total_force": r.load}
         fields = {"x": x, "pressure": pline, "pressure_map": r.pressure, "map_x": x, "map_y": y}
+    if lp.get("outputs.subsurface_stress", False):
+        _bem_stress(solid, sol, max(v for k, v in q.items() if k in ("half_width", "semi_axis_x", "semi_axis_y")),
+                    q, stats, fields)
     return ModelResult("bem", quantities=q, stats=stats, fields=fields)
+
+
+def _bem_stress(solid: layered.LayeredSolid, sol: layered.LayeredContactSolution, size: float, q: dict,
+                stats: dict, fields: dict) -> None:
+    """Sub-surface stresses of the layered BEM pressure (:mod:`femcheck.bem.layered_stress`): depth planes graded
+    down to 3 x the contact ``size`` (m), 7 more across the layer, the interface on both sides. Adds the maxima
+    (von_mises_max and its depth, tau_max, tau_xz_max, interface_shear_max, interface_normal_max, Pa / m) to
+    ``q`` and the (x, z) section (3D: the plane y = 0) to ``fields`` under the names line_contact uses."""
+    from ..bem import layered_stress
+    from ..bem.halfspace import Grid
+
+    depths = layered_stress.default_depths(solid, size)
+    r = sol.result
+    if sol.y is None:
+        f = layered_stress.line_stresses(r.pressure, sol.spacing[0], solid, depths, x=sol.x)
+        vm, tr, txz = f.von_mises(), f.tresca(), f.components["tau_xz"]
+    else:
+        g = Grid(sol.x.size, sol.y.size, *sol.spacing)
+        f = layered_stress.point_stresses(r.pressure, g, solid, depths)
+        j = g.ny // 2
+        vm, tr, txz = f.von_mises()[:, :, j], f.tresca()[:, :, j], f.components["tau_xz"][:, :, j]
+    m = f.maxima()
+    q.update({k: m[k] for k in ("von_mises_max", "von_mises_max_depth", "tau_max", "tau_xz_max",
+                                "interface_shear_max", "interface_normal_max") if k in m})
+    stats["stress"] = {**f.stats, "maxima": m, "depth_max": float(f.depths[-1]),
+                       "von_mises_max_in": "layer" if m["von_mises_max_depth"] <= solid.thickness else "substrate"}
+    fields.update({"stress_x": f.x, "stress_z": f.depths, "von_mises": vm, "tresca": tr, "tau_xz": txz})
 
 
 def _thin_one(lp: dict[str, Any], progress=None) -> ModelResult:
