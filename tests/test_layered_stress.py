@@ -284,3 +284,27 @@ def test_point_contact_limits_recover_the_hertz_axis(h_factor, which):
     assert m["von_mises_max"] == pytest.approx(exact["von_mises_max"], rel=1e-2)
     assert m["tau_max"] == pytest.approx(exact["tau_max"], rel=1e-2)
     assert m["von_mises_max_depth"] == pytest.approx(exact["von_mises_max_depth"], rel=3e-2)
+
+
+def test_layer_line_scene_reports_the_thin_coating_surface_stress():
+    from femcheck.runner import run
+    res = run("layer-line", overrides={"outputs.subsurface_stress": True, "layer.h_over_a": 2e-3}, models=["bem"],
+              use_cache=False)
+    m = res.models["bem"]
+    assert m.status == "ok", m.error
+    q = m.quantities
+    E1, nu1, E2, nu2 = 420e9, 0.25, 210e9, 0.30                # layer-line.toml
+    p = q["p_max"]
+    # a coating much thinner than the contact takes the substrate surface's in-plane strain (plane strain,
+    # sigma_xx = sigma_zz = -p: eps = -(1 + nu2)(1 - 2 nu2) p / E2) with its own moduli (Hooke's law):
+    eps = -(1 + nu2) * (1 - 2 * nu2) * p / E2
+    sx = (E1 * eps / (1 + nu1) - nu1 * p) / (1 - nu1)
+    sz, sy = -p, nu1 * (sx - p)
+    vm = np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2))
+    # 0.72 p0 at the surface, above the substrate's McEwen 0.56 p0: the maximum sits in the coating at z = 0;
+    # O(h/a) = 0.2 % corrections
+    assert q["von_mises_max"] == pytest.approx(vm, rel=5e-3)
+    assert q["von_mises_max_depth"] == 0.0
+    assert q["interface_normal_max"] == pytest.approx(p, rel=5e-3)        # sigma_zz ~ -p through a thin layer
+    f = m.fields
+    assert f["von_mises"].shape == (f["stress_z"].size, f["stress_x"].size)
