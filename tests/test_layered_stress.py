@@ -262,11 +262,11 @@ def test_line_contact_limits_recover_mcewen(h_factor, which):
     # h -> 0: the substrate's field (the vanishing layer keeps its own in-plane stresses, see maxima())
     m = f.maxima("substrate" if which == 2 else "all")
     exact = closed.line_contact_field(ref, nu).maxima          # McEwen (Johnson eq 4.49)
-    # issue 5: within 1 % (measured: see the report)
+    # issue 5 asks for 1 %; measured (1024 strips, a/dx = 410): maxima within 0.004 %, depths within 0.1 %
     for key in ("von_mises_max", "tau_max", "tau_xz_max"):
-        assert m[key] == pytest.approx(exact[key], rel=1e-2), key
-    assert m["von_mises_max_depth"] == pytest.approx(exact["von_mises_max_depth"], rel=2e-2)
-    assert m["tau_xz_max_depth"] == pytest.approx(exact["tau_xz_max_depth"], rel=2e-2)
+        assert m[key] == pytest.approx(exact[key], rel=2e-3), key
+    assert m["von_mises_max_depth"] == pytest.approx(exact["von_mises_max_depth"], rel=5e-3)
+    assert m["tau_xz_max_depth"] == pytest.approx(exact["tau_xz_max_depth"], rel=5e-3)
 
 
 @pytest.mark.parametrize("h_factor,which", [(1e-3, 2), (1e2, 1)])
@@ -281,9 +281,10 @@ def test_point_contact_limits_recover_the_hertz_axis(h_factor, which):
     f = ls.point_stresses(sol.result.pressure, g, s, np.linspace(0.3 * a, 0.7 * a, 9), interface=False)
     m = f.maxima("substrate" if which == 2 else "all")
     exact = closed.hertz_sphere_maxima(a, ref.p_max, nu)       # Johnson eq 3.45 on the axis
-    assert m["von_mises_max"] == pytest.approx(exact["von_mises_max"], rel=1e-2)
-    assert m["tau_max"] == pytest.approx(exact["tau_max"], rel=1e-2)
-    assert m["von_mises_max_depth"] == pytest.approx(exact["von_mises_max_depth"], rel=3e-2)
+    # issue 5 asks for 1 %; measured (65^2 cells, a/dx = 26): -0.009 % / -0.004 %, depth +0.18 % / +0.33 %
+    assert m["von_mises_max"] == pytest.approx(exact["von_mises_max"], rel=2e-3)
+    assert m["tau_max"] == pytest.approx(exact["tau_max"], rel=2e-3)
+    assert m["von_mises_max_depth"] == pytest.approx(exact["von_mises_max_depth"], rel=1e-2)
 
 
 def test_layer_line_scene_reports_the_thin_coating_surface_stress():
