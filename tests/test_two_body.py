@@ -121,14 +121,15 @@ SRB = {"geometry.roller_diameter": 0.0198, "geometry.crown_radius": 0.1003, "geo
 
 
 def test_srb_conformal_inner_semi_axes_vs_elliptic_hertz():
-    # seed 000 inner raceway (roller on the real ring segment), coarse mesh (0.7 a_H): the semi-axes must be within
-    # issue 4's 5 % of elliptic Hertz with srb_contact's radii (measured -1.6 % / -2.8 %); the load balance exact.
+    # seed 000 inner raceway (roller on the real ring segment), coarse mesh (0.5 a_H): the semi-axes must be within
+    # issue 4's 5 % of elliptic Hertz with srb_contact's radii (measured -2.2 % / -2.5 %; at 0.7 a_H the short
+    # semi-axis is mesh noise, -1.6 % to -9.4 % between meshes); the load balance exact.
     from femcheck.fem import srb_conformal
     from femcheck.problems.srb_contact import radii
 
     rx, ry = radii(SRB)["inner"]
     h = hertz.elliptic_contact(5500.0, rx, ry, effective_modulus(Elastic(207e9, 0.3), Elastic(207e9, 0.3)))
-    lv = srb_conformal.solve_contact({**SRB, "numerics.conformal_h_contact": 0.7}, "inner", 0)
+    lv = srb_conformal.solve_contact({**SRB, "numerics.conformal_h_contact": 0.5}, "inner", 0)
     assert lv["semi_axis_x"] == pytest.approx(h.semi_axis_x, rel=0.05)
     assert lv["semi_axis_y"] == pytest.approx(h.semi_axis_y, rel=0.05)
     assert lv["total_force"] == pytest.approx(5500.0, rel=1e-9)

@@ -21,7 +21,8 @@ cycles. As in the dual quadratic mortar method (Popp, Wohlmuth, Gee & Wall, SIAM
 alpha (u~_c1 + u~_c2), corners unchanged (alpha = 1/5): the transformed shape functions keep the partition of
 unity and have positive integrals w~ (2 alpha A/3 at a corner, (1 - 2 alpha) A/3 at a mid-edge node per
 triangle of area A). The constraint is then imposed on the gap's coefficients in that basis, g~ = T^-1 g, with
-each slave coefficient's own normal; the contact pressure at a node is p_j = lam_j / w~_j. For P1, T = I and
+each slave coefficient's own normal; lam_j / w~_j are the pressure's coefficients in the transformed basis and
+the nodal pressures are T applied to them (mid-edge: (1 - 2 alpha) p~_mid + alpha (p~_c1 + p~_c2)). For P1, T = I and
 w_j = A/3 per adjacent triangle (the lumped tributary area).
 
 Solution. On an active set A each active row is eliminated through one slave DOF (the component of largest
@@ -458,7 +459,14 @@ def solve_two_body(master: ContactBody, slave: ContactBody, force: float, candid
             um = u_full[sm.basis.nodal_dofs].reshape(3, -1)
             us = u_full[nm + ss.basis.nodal_dofs].reshape(3, -1)
             times["total_s"] = time.perf_counter() - t0
-            return TwoBodySolution(Xs, nvec, lam, lam / w, w, gap, active, float(delta), total, um, us, it, cg_its,
+            pressure = lam / w
+            if T_rows is not None:
+                # lam / w~ are the pressure's coefficients in the transformed basis; the nodal values are T p~
+                mid, cpos = T_rows
+                nodal = pressure.copy()
+                nodal[mid] = (1 - 2 * ALPHA_P2) * pressure[mid] + ALPHA_P2 * (pressure[cpos[0]] + pressure[cpos[1]])
+                pressure = nodal
+            return TwoBodySolution(Xs, nvec, lam, pressure, w, gap, active, float(delta), total, um, us, it, cg_its,
                                    residual, int(free.size), order, lin.kind, history, times)
         active = new
         if not active.any():
