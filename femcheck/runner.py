@@ -22,6 +22,11 @@ def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = 
     return load_scene(scene, overrides)
 
 
+def _store_reference(scene: Scene, name: str, key: str, res: ModelResult, dep: dict) -> None:
+    relevant = {p: v for p, v in scene.params.items() if p.startswith(dep["params"])}
+    references.store(scene.kind, name, key, res, scene.name, relevant)
+
+
 def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = False,
               progress: Progress | None = None, store_references: bool = False) -> ModelResult:
     """Run one model; failures become ``status='failed'`` with the reason, never an exception (bad input
@@ -37,6 +42,8 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
         if not rebuild and is_reference and (ref := references.load(scene.kind, name, k)) is not None:
             return ref
         if not rebuild and (hit := cache.load(k)) is not None:
+            if is_reference and store_references:       # solved earlier under --set: keep it as the reference
+                _store_reference(scene, name, k, hit, dep)
             return hit
     t0 = time.perf_counter()
     try:
@@ -54,8 +61,7 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
     elif k is not None:
         cache.store(k, res)
         if is_reference and store_references:
-            relevant = {p: v for p, v in scene.params.items() if p.startswith(dep["params"])}
-            references.store(scene.kind, name, k, res, scene.name, relevant)
+            _store_reference(scene, name, k, res, dep)
     return res
 
 

@@ -145,8 +145,17 @@ class ValidityMap:
         for model, ref in pairs:
             v = self.pair_validity(model, ref)
             n_ok, n = int(np.nansum(v)), int(np.sum(~np.isnan(v)))
-            quants = ", ".join(sorted({c[2] for c in self.comparisons() if c[:2] == (model, ref)}))
-            head = (f"{model} vs {ref} ({quants}): within tolerance at {n_ok} of {n} grid points")
+            comps = [c for c in self.comparisons() if c[:2] == (model, ref)]
+            judged = [c for c in comps if self.grid(c)[2] is not None]
+            worst = "; ".join(f"{c[2]} max {100 * np.nanmax(self.grid(c)[0]):.3g} %" for c in comps
+                              if not c[2].startswith("pressure_profile") and c[2] != "total_force"
+                              and np.any(~np.isnan(self.grid(c)[0])))
+            if not judged:
+                out.append(f"{model} vs {ref}: no tolerance set, so no verdict ({worst}).")
+                continue
+            quants = ", ".join(f"{c[2]} {self.grid(c)[2]:.3g}" for c in judged)
+            head = (f"{model} vs {ref} (tolerances: {quants}): within tolerance at {n_ok} of {n} grid points "
+                    f"({worst})")
             rows = []
             for iy, yv in enumerate(self.y.values):
                 spans = _spans(v[iy], self.x.values)

@@ -12,7 +12,7 @@ from femcheck.scene import load_scene
 
 
 def test_coated_roller_thin_layer_reproduces_seed_001_and_bem_sees_the_steel():
-    res = run("coated-roller", use_cache=False)
+    res = run("coated-roller", models=["bem", "thin_layer", "analytic"], use_cache=False)
     assert res.models["bem"].status == "ok" and res.models["thin_layer"].status == "ok"
     thin, bem, hz = (res.models[m].quantities for m in ("thin_layer", "bem", "analytic"))
     # seed 001 §4: "tau_max = 0.3 p0 = 2.25 GPa" for the alumina-coated roller, i.e. p0 = 7.5 GPa
@@ -67,7 +67,7 @@ def test_bad_layer_input_names_the_key(over, key):
 
 
 def test_layer_point_scene_runs_and_balances_the_load():
-    res = run("layer-point", use_cache=False)
+    res = run("layer-point", models=["bem", "thin_layer", "analytic"], use_cache=False)
     bem = res.models["bem"].quantities
     assert bem["total_force"] == pytest.approx(100.0, rel=1e-9)
     # 420 GPa layer (h/a = 0.34) on 210 GPa steel: stiffer than steel, softer than the layer material as a

@@ -19,9 +19,10 @@ Models:
                   nu1 <= 0.499, squeeze-film form with a frictionless top above): ignores the substrate's
                   compliance, valid for h << a on a substrate much stiffer than the layer.
   ``analytic``    homogeneous Hertz of the uncoated substrate (for contrast: what the coating changes).
-  ``fem``         NOT wired here (see the marked block near MODELS): the layered FE references are
-                  ``femcheck/fem/layered_line.py`` and ``femcheck/fem/layered_point.py`` (helper H5), each exposing
-                  ``model(params, progress=None) -> ModelResult`` and ``FEM_SCHEMA`` / ``FEM_DEFAULTS``.
+  ``fem``         layered FE reference (:mod:`femcheck.fem.layered_line`: 2D plane strain, P2 / mixed u-p
+                  where nu > 0.45; :mod:`femcheck.fem.layered_point`: 3D quarter block, P1, nu <= 0.45):
+                  conforming structured layer, bonded interface, rigid indenter, active set, Richardson over
+                  mesh levels; stored in references/ and re-solved only when its inputs or code change.
 
 Quantities (SI): line ``p_max`` (Pa), ``half_width`` (m), ``total_force`` (N/m); point ``p_max``,
 ``semi_axis_x``, ``semi_axis_y`` (m), ``total_force`` (N).
@@ -35,12 +36,24 @@ import numpy as np
 from ..analytic import hertz, thin_layer
 from ..bem import layered
 from ..bem.halfspace import grid as bem_grid
+from ..fem import layered_line, layered_point
 from ..errors import ConvergenceError, InputError
 from ..qoi import contact_edge
 from ..result import ModelResult
 from ..scene import Key, Scene, tolerance_key
 
-MODEL_NAMES = ("bem", "thin_layer", "analytic")
+MODEL_NAMES = ("bem", "thin_layer", "analytic", "fem")
+
+
+def _wider(a: Key | None, b: Key | None) -> Key:
+    """One schema entry for a numerics.fem_* key that the 2D and 3D FE models may both have (each model's own
+    range is checked again in ``validate``, and its own default applies when the scene does not set the key)."""
+    if a is None or b is None:
+        return a or b
+    if a.kind in ("int", "float"):
+        lo, hi = min(a.lo, b.lo), max(a.hi, b.hi)
+        return Key(a.kind, a.unit, a.doc.replace("(2D", "(2D/3D"), lo=lo, hi=hi, lo_closed=True, hi_closed=True)
+    return a
 MAX_A_OVER_R = 0.1            # half-space and small-strain assumptions of every model here
 
 SCHEMA: dict[str, Key] = {
@@ -70,6 +83,8 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
     "outputs.subsurface_stress": Key("bool", "-", "sub-surface stresses of the bem model in layer and substrate "
                                      "(femcheck.bem.layered_stress), interface both sides"),
+    **{k: _wider(layered_line.FEM_SCHEMA.get(k), layered_point.FEM_SCHEMA.get(k))
+       for k in {**layered_line.FEM_SCHEMA, **layered_point.FEM_SCHEMA}},
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -83,7 +98,14 @@ DEFAULTS: dict[str, Any] = {
     "outputs.subsurface_stress": False,
 }
 REQUIRED = ("geometry.radius",)
-DEPENDS: dict[str, dict] = {}
+DEPENDS: dict[str, dict] = {
+    "fem": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
+            "code": ("fem/layered_line.py", "fem/layered_point.py", "fem/mesh_layered.py", "fem/elasticity.py",
+                     "fem/contact.py", "fem/elasticity3d.py", "fem/rigid_contact.py", "fem/quarter_block.py",
+                     "fem/mesh2d.py", "fem/mesh3d.py", "fem/convergence.py", "analytic/thin_layer.py",
+                     "analytic/hertz.py", "qoi.py", "materials.py", "result.py"),
+            "reference": True},
+}
 
 LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
 # setting one key of a pair (--set, a map axis) replaces the other (femcheck.scene._apply_overrides)
@@ -197,6 +219,19 @@ def validate(params: dict[str, Any]) -> None:
         if "analytic" in params.get("models.run", ()) and rigid:
             raise InputError("models.run", "analytic (Hertz of the uncoated substrate) needs an elastic substrate; "
                              "drop it from models.run")
+    if "fem" in params.get("models.run", ()) or "fem" in params.get("models.references", ()):
+        fem_schema = (layered_line if geometry_of(params) == "line" else layered_point).FEM_SCHEMA
+        for k, v in params.items():
+            if k.startswith("numerics.fem_"):
+                if k not in fem_schema:
+                    raise InputError(k, f"not a key of the {geometry_of(params)}-contact FE model; allowed: "
+                                     + ", ".join(sorted(fem_schema)))
+                fem_schema[k].coerce(k, v)
+        if geometry_of(params) == "point":
+            for lp in layers:
+                if lp["layer.nu"] > 0.45:
+                    raise InputError("layer.nu", f"{lp['layer.nu']:g}: the 3D FE model (P1, no mixed form) allows "
+                                     "(-1, 0.45]; drop fem from models.run for a nearly incompressible layer")
     # small contact against the radius: the largest contact is the softer of the layer and substrate half-spaces
     for lp in layers:
         a_max = _size_bound(lp)
@@ -359,7 +394,13 @@ def _analytic_one(lp: dict[str, Any], progress=None) -> ModelResult:
     return ModelResult("analytic", quantities=q, stats={"E_star": h.modulus}, fields={"x": x, "pressure": p})
 
 
-SINGLE: dict[str, Callable[..., ModelResult]] = {"bem": _bem_one, "thin_layer": _thin_one, "analytic": _analytic_one}
+def _fem_one(lp: dict[str, Any], progress=None) -> ModelResult:
+    """Layered FE reference: 2D plane strain (line) or 3D quarter block (point)."""
+    return (layered_line if geometry_of(lp) == "line" else layered_point).model(lp, progress)
+
+
+SINGLE: dict[str, Callable[..., ModelResult]] = {"bem": _bem_one, "thin_layer": _thin_one, "analytic": _analytic_one,
+                                                 "fem": _fem_one}
 
 
 def _model(name: str) -> Callable[..., ModelResult]:
@@ -388,12 +429,6 @@ def _model(name: str) -> Callable[..., ModelResult]:
     return run
 
 
-# ---- FEM: the lead wires it here -------------------------------------------------------------------------------
-# MODELS["fem"] = a wrapper calling femcheck.fem.layered_line.model (line) or femcheck.fem.layered_point.model
-# (point) with resolve_layer(scene.params) / layer_params(scene.params, coating); add "fem" to MODEL_NAMES,
-# merge FEM_SCHEMA / FEM_DEFAULTS into SCHEMA / DEFAULTS and declare DEPENDS["fem"] (reference = True).
-# Not imported here on purpose: those modules are written in parallel (helper H5).
-# -----------------------------------------------------------------------------------------------------------------
 MODELS: dict[str, Callable[..., ModelResult]] = {n: _model(n) for n in MODEL_NAMES}
 
 
