@@ -179,6 +179,25 @@ def _project(z: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     return z * scale, nz, inside
 
 
+def nonmonotone_step(x: np.ndarray, dx: np.ndarray, residual_vec: Callable, merits: list[float],
+                     first: bool) -> tuple[np.ndarray, np.ndarray, object, float]:
+    """Back-track along the Newton step ``dx`` until the merit |F|^2 improves on the worst of the last
+    NONMONOTONE_MEMORY merits (Grippo, Lampariello & Lucidi 1986). A monotone search cut most steps here (the
+    active set of the Coulomb law then grows by one ring of elements per step); the full steps converge in a
+    few. The first step from p = 0 is the full-adhesion solution: taken whole whatever its merit. Returns
+    (x, F, aux, merit) at the accepted point."""
+    step = 1.0
+    reference = np.inf if first else max(merits[-NONMONOTONE_MEMORY:])
+    for _ in range(40):
+        x_new = x + step * dx
+        F_new, aux_new = residual_vec(x_new)
+        m_new = float(F_new @ F_new)
+        if m_new < (1.0 - 1e-4 * step) * reference or m_new == 0.0:
+            break
+        step *= 0.5
+    return x_new, F_new, aux_new, m_new
+
+
 def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarray | None = None,
                      cell_area: float = 1.0, tol: float = 1e-10, max_iter: int = 200,
                      p0: np.ndarray | None = None, shift0: np.ndarray | None = None,
@@ -273,20 +292,7 @@ def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarr
             dx = sla.lstsq(J, -F, check_finite=False)[0]
         if not np.all(np.isfinite(dx)):
             raise ConvergenceError(f"{solver} semi-smooth Newton", it, res, tol, "non-finite Newton step")
-        # Non-monotone back-tracking (Grippo, Lampariello & Lucidi 1986): a full step is accepted if it improves
-        # on the worst of the last few merits. A monotone search cut most steps here (the active set of the
-        # Coulomb law then grows by one ring of elements per step); the full steps converge in a few.
-        step = 1.0
-        # the first step from p = 0 is the full-adhesion solution: taken whole whatever its merit
-        reference = np.inf if it == 1 else max(merits[-NONMONOTONE_MEMORY:])
-        for _ in range(40):
-            x_new = x + step * dx
-            F_new, aux_new = residual_vec(x_new)
-            m_new = float(F_new @ F_new)
-            if m_new < (1.0 - 1e-4 * step) * reference or m_new == 0.0:
-                break
-            step *= 0.5
-        x, F, aux, merit = x_new, F_new, aux_new, m_new
+        x, F, aux, merit = nonmonotone_step(x, dx, residual_vec, merits, first=it == 1)
         merits.append(merit)
         res = float(np.abs(F).max()) / gmax
     raise ConvergenceError(f"{solver} semi-smooth Newton", max_iter, res, tol)

@@ -47,7 +47,6 @@ from ..bem.halfspace import Grid
 from ..errors import ConvergenceError, InputError
 from .influence import CombinedConstants, influence
 
-NONMONOTONE_MEMORY = 8
 
 
 # --------------------------------------------------------------------------------------------------------------
@@ -262,7 +261,7 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
     unknown. ``p0``, ``shift0`` warm start. Newton stops when max|F| / max g < ``tol``; ConvergenceError after
     ``max_iter`` Newton steps or when a Newton system cannot be solved by GMRES to its forcing tolerance.
     """
-    from .exact import TangentialResult
+    from .exact import TangentialResult, nonmonotone_step
 
     op, prec = tangential_operators(g, constants, rolling)
     R = _Restricted(g, cells)
@@ -372,16 +371,7 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
         dx = lin.x
         if not np.all(np.isfinite(dx)):
             raise ConvergenceError(f"{solver} Newton-GMRES", it, res, tol, "non-finite Newton step")
-        step = 1.0
-        reference = np.inf if it == 1 else max(merits[-NONMONOTONE_MEMORY:])
-        for _ in range(40):
-            x_new = x + step * dx
-            F_new, aux_new = residual_vec(x_new)
-            m_new = float(F_new @ F_new)
-            if m_new < (1.0 - 1e-4 * step) * reference or m_new == 0.0:
-                break
-            step *= 0.5
-        x, F, aux = x_new, F_new, aux_new
+        x, F, aux, m_new = nonmonotone_step(x, dx, residual_vec, merits, first=it == 1)
         merits.append(m_new)
         res = float(np.abs(F).max()) / gmax
     raise ConvergenceError(f"{solver} Newton-GMRES", max_iter, res, tol)
