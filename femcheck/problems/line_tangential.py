@@ -6,7 +6,8 @@ cattaneo-2d) -- exactly one of them. Frame and signs: :mod:`femcheck.analytic.ca
 cylinder, the creep force opposes xi; the shift is positive in the direction of Q').
 
 Models: ``exact`` (Kalker's exact theory in 2D, :mod:`femcheck.cect.line`), ``analytic`` (Carter / 2D
-Cattaneo closed forms, quasi-identical bodies), ``full_slip`` (rolling only: traction -mu p sgn(xi)), ``fem``
+Cattaneo closed forms, quasi-identical bodies), ``linear`` and ``fastsim`` (rolling only: Kalker's linear theory
+and 2D FASTSIM, :mod:`femcheck.cect.simplified_line`), ``full_slip`` (rolling only: traction -mu p sgn(xi)), ``fem``
 (2D plane-strain FE reference with Coulomb friction, :mod:`femcheck.fem.friction_line`; stored reference).
 Quantities: rolling -- ``creep_force_x`` (N/m), ``adhesion_length`` (m), ``adhesion_fraction`` (-);
 shift -- ``shift`` (m, the micro-slip part delta(Q') - delta_stick(Q'), see the conventions), ``stick_half_width``
@@ -20,6 +21,7 @@ import numpy as np
 
 from ..analytic import carter, hertz
 from ..cect.line import coupling_constant, solve_line_friction
+from ..cect.simplified_line import fastsim_line, linear_line
 from ..errors import InputError
 from ..fem import friction_line
 from ..materials import effective_modulus
@@ -27,7 +29,7 @@ from ..qoi import half_width
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
 
-MODEL_NAMES = ("exact", "analytic", "full_slip", "fem")
+MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "fem")
 MAX_A_OVER_R = 0.1       # half-space and small-strain limit, as for hertz-line
 QUASI_IDENTICAL_TOL = 1e-9   # |kappa E*| below this: no normal-tangential coupling (Carter applies exactly)
 STRESS_QUANTITIES = ("creep_force_x", "adhesion_length", "shift", "stick_half_width")
@@ -216,14 +218,48 @@ def full_slip(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("full_slip", quantities=q, stats={"problem": "rolling"}, fields=fields)
 
 
+def _simplified(name: str, scene: Scene) -> ModelResult | tuple:
+    p = scene.params
+    if problem_type(p) != "rolling":
+        return ModelResult(name, "skipped", error=f"{name} applies to steady rolling only, not to a shift")
+    return _hertz(p), p["kinematics.xi"], p["friction.mu"]
+
+
+def linear(scene: Scene, progress=None) -> ModelResult:
+    """Kalker's linear theory in 2D (no slip): F'_x = -(pi a E*/2) xi, unbounded by friction."""
+    got = _simplified("linear", scene)
+    if isinstance(got, ModelResult):
+        return got
+    h, xi, _ = got
+    q = {**_common(h), "creep_force_x": float(linear_line(h.half_width, h.modulus, xi)), "adhesion_length":
+         2.0 * h.half_width, "adhesion_fraction": 1.0}
+    return ModelResult("linear", quantities=q, stats={"problem": "rolling", "creep_coefficient":
+                                                      0.5 * np.pi * h.half_width * h.modulus})
+
+
+def fastsim(scene: Scene, progress=None) -> ModelResult:
+    """2D FASTSIM: springs of flexibility L = 4a/(pi E*) (matching linear theory), traction bound mu p."""
+    got = _simplified("fastsim", scene)
+    if isinstance(got, ModelResult):
+        return got
+    h, xi, mu = got
+    r = fastsim_line(h.load, h.half_width, h.modulus, mu, xi)
+    x = np.linspace(-1.25 * h.half_width, 1.25 * h.half_width, 1001)
+    q = {**_common(h), "creep_force_x": r.creep_force_x, "adhesion_length": r.adhesion_length,
+         "adhesion_fraction": r.adhesion_fraction}
+    fields = {"x": x, "pressure": h.pressure(x), "traction": r.traction(x, h.half_width, h.p_max, mu, xi)}
+    return ModelResult("fastsim", quantities=q, stats={"problem": "rolling", "flexibility": r.flexibility,
+                                                       "crossing": r.crossing}, fields=fields)
+
+
 def fem(scene: Scene, progress=None) -> ModelResult:
     """2D plane-strain FE reference with Coulomb friction (:mod:`femcheck.fem.friction_line`): Cattaneo shift
     under load control or steady rolling in the Eulerian contact frame, Richardson over mesh levels."""
     return friction_line.model(scene.params, progress)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"exact": exact, "analytic": analytic, "full_slip": full_slip,
-                                                 "fem": fem}
+MODELS: dict[str, Callable[..., ModelResult]] = {"exact": exact, "analytic": analytic, "linear": linear,
+                                                 "fastsim": fastsim, "full_slip": full_slip, "fem": fem}
 
 
 def load_of(scene: Scene) -> float:
