@@ -52,3 +52,18 @@ def test_bad_grids():
         creep_coefficients(1.0, 0.25, (12, 20))
     with pytest.raises(InputError):
         coefficients_on_grid(1.0, 0.7, 12)
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.25])
+def test_thin_contact_limit_including_c33(nu):
+    # reference (independent of Kalker's table, which we could not source for C33): for a/b -> 0 every strip y is
+    # a 2D contact of half-width a(y) = a sqrt(1 - y^2/b^2) in Carter's linear regime, F'(y) = -pi a(y) G
+    # xi(y) / (2 (1 - nu)) with xi(y) = xi - phi y, which integrates to C11 = pi^2 / (4 (1 - nu)) and
+    # C33 = pi^2 b / (16 (1 - nu) a) (lateral: anti-plane, C22 = pi^2 / 4). Measured at a/b = 0.02: <= 0.18 %.
+    import numpy as np
+
+    ab = 0.02
+    k = creep_coefficients(ab, nu, grids=(16, 32, 64))
+    assert k.c11 == pytest.approx(np.pi**2 / (4 * (1 - nu)), rel=0.005)
+    assert k.c22 == pytest.approx(np.pi**2 / 4, rel=0.005)
+    assert k.c33 == pytest.approx(np.pi**2 / (16 * (1 - nu) * ab), rel=0.005)
