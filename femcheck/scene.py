@@ -88,10 +88,14 @@ class Key:
 # refused because the plane-strain stiffness and the FE Lame constant lambda are then infinite).
 def fem_mesh_keys(levels_hi: int, h_contact_lo: float, h_contact_hi: float, h_max_hi: float, zone_doc: str,
                   zone_hi: float, block_unit: str, block_doc: str, block_lo: float, block_hi: float) -> dict[str, Key]:
-    """The mesh-family keys shared by the 3D FE models (sizes of the coarsest level; each level halves them)."""
+    """The mesh-family keys shared by the 3D FE models (sizes of the coarsest level; each level divides them by
+    ``numerics.fem_ratio``)."""
     return {
         "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson extrapolation)", lo=1,
                                    hi=levels_hi, lo_closed=True, hi_closed=True),
+        "numerics.fem_ratio": Key("float", "-", "FEM refinement ratio between levels (2: halving; sqrt(2) gives "
+                                  "three levels for the cost of two halvings)", lo=1.1, hi=2.0, lo_closed=True,
+                                  hi_closed=True),
         "numerics.fem_h_contact": Key("float", "a_H", "FEM element size over the contact zone, coarsest level",
                                       lo=h_contact_lo, hi=h_contact_hi, lo_closed=True, hi_closed=True),
         "numerics.fem_grading": Key("float", "-", "FEM element growth per unit distance, coarsest level", lo=0.0,

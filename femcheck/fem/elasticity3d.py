@@ -137,7 +137,7 @@ class DirectElasticity:
         t0 = time.perf_counter()
         self.solid, self.free, self.tol = solid, np.asarray(free), tol
         self.A = solid.K[self.free][:, self.free].tocsr()
-        self._key, self._lu, self._keep = None, None, None
+        self._key, self._lu, self._keep, self._M = None, None, None, None
         self.setup_s = time.perf_counter() - t0
 
     def solve(self, rhs: np.ndarray, prescribed: np.ndarray | None = None, values: np.ndarray | None = None,
@@ -151,11 +151,11 @@ class DirectElasticity:
             u[prescribed] = values
         key = (keep.tobytes(), None if spring is None else np.asarray(spring).tobytes())
         if key != self._key:
-            M = self.A if spring is None else self.A + diags(spring)
+            self._M = self.A if spring is None else self.A + diags(spring)
             idx = np.flatnonzero(keep)
-            self._lu = splu(M[idx][:, idx].tocsc(), permc_spec="COLAMD")
+            self._lu = splu(self._M[idx][:, idx].tocsc(), permc_spec="COLAMD")
             self._key, self._keep = key, idx
-        M = self.A if spring is None else self.A + diags(spring)
+        M = self._M
         b = rhs - self.A @ u
         u[self._keep] = self._lu.solve(b[self._keep])
         r = (M @ u - rhs)[self._keep]

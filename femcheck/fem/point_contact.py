@@ -7,7 +7,8 @@ theory the normal contact depends on E* only (Johnson 1985 §4.2; with the Dundu
 bodies neglected, as Hertz does), so the comparison with Hertz and the BEM is like with like; stresses
 inside the FE block are those of this equivalent body.
 
-Mesh levels form one family: every length of the sizing (contact size, grading, cap) halves per level, so
+Mesh levels form one family: every length of the sizing (contact size, grading, cap) is divided by the same
+ratio per level (``numerics.fem_ratio``, 2 by default), so
 Richardson's geometric-similarity assumption holds. The block is ``block`` Hertz semi-axes (x) on each side
 and deep, clamped at the bottom, with symmetry planes x = 0 and y = 0; the finite size is measured by one extra
 solve of the coarsest level on a block twice as large.
@@ -36,10 +37,12 @@ Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]
 @dataclass(frozen=True)
 class FEMPointSettings:
     """Element sizes in the short Hertz semi-axis, the block and the size cap in the long one. Level k
-    (0 = coarsest) has contact element size h_contact 2^-k inside the zone of ``contact_zone`` semi-axes,
-    grading ``grading`` 2^-k and cap ``h_max`` 2^-k; the block is ``block`` long semi-axes on each side."""
+    (0 = coarsest) has contact element size h_contact r^-k inside the zone of ``contact_zone`` semi-axes,
+    grading ``grading`` r^-k and cap ``h_max`` r^-k (r = ``ratio``); the block is ``block`` long semi-axes on
+    each side."""
 
     levels: int = 3
+    ratio: float = 2.0
     h_contact: float = 0.125
     grading: float = 0.25
     h_max: float = 2.0
@@ -87,7 +90,7 @@ def solve_level(gap: Gap, block: Elastic, force: float, ax: float, ay: float, le
                 block_scale: float = 1.0) -> FEMPointLevel:
     """One mesh level. ``gap(x, y)`` initial gap (m), ``block`` the equivalent elastic body, ``force`` the
     total load (N; the quarter model carries a quarter), ``ax``, ``ay`` Hertz semi-axes (m) for sizing."""
-    f = 2.0**-level
+    f = s.ratio**-level
     big = max(ax, ay)
     L = s.block * big * block_scale
     zx, zy = s.contact_zone * ax, s.contact_zone * ay
@@ -131,7 +134,8 @@ MAX_ASPECT = 100.0
 
 
 def settings(params: dict[str, Any]) -> FEMPointSettings:
-    return FEMPointSettings(levels=params["numerics.fem_levels"], h_contact=params["numerics.fem_h_contact"],
+    return FEMPointSettings(levels=params["numerics.fem_levels"], ratio=params.get("numerics.fem_ratio", 2.0),
+                            h_contact=params["numerics.fem_h_contact"],
                             grading=params["numerics.fem_grading"], h_max=params["numerics.fem_h_max"],
                             contact_zone=params["numerics.fem_contact_zone"], block=params["numerics.fem_block"],
                             finite_size_check=params["numerics.fem_finite_size_check"],

@@ -31,10 +31,12 @@ from .quarter_block import QuarterContact, solve_quarter
 
 @dataclass(frozen=True)
 class FEMRollerSettings:
-    """Lengths in Hertz half-widths a_H (line contact with W/L). Level k has contact size h_contact 2^-k,
-    grading grading 2^-k, cap h_max 2^-k; the block extends ``block`` a_H beyond the footprint in x, y and z."""
+    """Lengths in Hertz half-widths a_H (line contact with W/L). Level k has contact size h_contact r^-k,
+    grading grading r^-k, cap h_max r^-k (r = ``ratio``); the block extends ``block`` roller lengths beyond the
+    footprint in x, y and z."""
 
     levels: int = 2
+    ratio: float = 2.0
     h_contact: float = 0.25
     grading: float = 0.25
     h_max: float = 40.0
@@ -43,7 +45,8 @@ class FEMRollerSettings:
 
 
 def settings(params: dict[str, Any]) -> FEMRollerSettings:
-    return FEMRollerSettings(levels=params["numerics.fem_levels"], h_contact=params["numerics.fem_h_contact"],
+    return FEMRollerSettings(levels=params["numerics.fem_levels"], ratio=params.get("numerics.fem_ratio", 2.0),
+                             h_contact=params["numerics.fem_h_contact"],
                              grading=params["numerics.fem_grading"], h_max=params["numerics.fem_h_max"],
                              contact_zone=params["numerics.fem_contact_zone"], block=params["numerics.fem_block"])
 
@@ -78,7 +81,7 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
     for k in range(s.levels):
         if progress:
             progress(f"FEM level {k + 1}/{s.levels}")
-        f = 2.0**-k
+        f = s.ratio**-k
         hk = s.h_contact * a * f
         zx, zy = s.contact_zone * a, 0.5 * L + a
         # the block is sized on the roller length: a block only ~20 a deep under a contact 90 a long is a thin

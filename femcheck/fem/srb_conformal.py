@@ -31,6 +31,7 @@ import numpy as np
 
 from ..analytic import hertz
 from ..errors import InputError
+from ..geometry.srb import radii, rolling_radii
 from ..materials import Elastic, effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
@@ -80,13 +81,9 @@ FEM_DEFAULTS: dict[str, Any] = {
 def contact_geometry(params: dict[str, Any]) -> dict[str, dict[str, float]]:
     """Per contact: groove radius (m), rolling radius (m, seed 000 eq 1 with r_m = (r_E - D/2) cos(alpha)),
     the bearing axis (point y, z and signed tilt in the local frame) and the Hertz radii (Rx, Ry) of
-    :func:`femcheck.problems.srb_contact.radii`."""
-    from ..problems.srb_contact import radii
-
-    D, alpha = params["geometry.roller_diameter"], params["geometry.contact_angle"]
-    r_e = params["geometry.groove_radius_outer"]
-    r_m = (r_e - 0.5 * D) * np.cos(alpha)
-    roll = {"inner": r_m - 0.5 * D * np.cos(alpha), "outer": r_m + 0.5 * D * np.cos(alpha)}
+    :func:`femcheck.geometry.srb.radii`."""
+    alpha = params["geometry.contact_angle"]
+    roll = rolling_radii(params)
     rad = radii(params)
     out = {}
     for c, side in (("inner", -1.0), ("outer", 1.0)):

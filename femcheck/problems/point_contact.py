@@ -76,6 +76,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_warm_levels": 0,
     "outputs.subsurface_stress": False,
     "numerics.fem_levels": 3,
+    "numerics.fem_ratio": 2.0,
     "numerics.fem_h_contact": 0.125,
     "numerics.fem_grading": 0.25,
     "numerics.fem_h_max": 2.0,

@@ -72,7 +72,10 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_margin_y": 0.05,
     "numerics.bem_tol": 1e-10,
     "numerics.finite_line_elements": 64,
-    "numerics.fem_levels": 2,
+    # three levels a/4, a/(4 sqrt 2), a/8: Richardson for the cost of two halvings (a/16 over a 90a-long
+    # footprint would not fit the 5-minute, 8-GB budget)
+    "numerics.fem_levels": 3,
+    "numerics.fem_ratio": 2.0**0.5,
     "numerics.fem_h_contact": 0.25,
     "numerics.fem_grading": 0.25,
     "numerics.fem_h_max": 40.0,

@@ -1,34 +1,29 @@
 """Frictionless normal contact of a spherical-roller-bearing roller with its inner and outer raceways
 (srb-normal; seed 000, Table 1 and eq 1).
 
-Local geometry at the nominal contact points: the pitch radius r_m = (r_E - D/2) cos(alpha) (seed 000 prints
-"(r_E D/2)": the minus sign is lost; with it the outer rolling radius r_m + (D/2) cos(alpha) equals r_E
-cos(alpha), as the outer raceway is a sphere of radius r_E), the rolling radii r_roll = r_m -/+ (D/2)
-cos(alpha) (eq 1), and the rings' longitudinal curvature radii r_roll / cos(alpha) (seed 000 §2). Relative
-radii of curvature, x rolling, y along the roller axis:
-
-    inner:  1/Rx = 2/D + cos(alpha)/r_roll,I     1/Ry = 1/R - 1/r_I      (convex ring, concave groove)
-    outer:  1/Rx = 2/D - cos(alpha)/r_roll,E     1/Ry = 1/R - 1/r_E      (concave ring and groove)
+Local geometry at the nominal contact points (pitch radius with the minus sign seed 000's eq 1 lost, rolling
+radii, relative radii of curvature): :mod:`femcheck.geometry.srb`.
 
 Both contacts carry the roller's normal load N (radial equilibrium of one roller without centrifugal force,
 as in the frictionless normal problem). Each contact is then a point-contact problem with these radii, solved by
 the point-contact models (:mod:`femcheck.problems.point_contact`): ``analytic`` (elliptic Hertz), ``bem``
 (half-space BEM), ``fem`` (3D FE reference with the equivalent paraboloid on a flat block: the half-space
-geometry of Hertz and the BEM, not the conformal sub-model of the real ring segments). Quantities carry the
-suffix ``_inner`` / ``_outer``.
+geometry of Hertz and the BEM). ``fem_conformal`` is the conformal sub-model: the barrel-roller segment and
+each raceway segment meshed with their real curvatures, two-body node-to-surface contact
+(:mod:`femcheck.fem.srb_conformal`). Quantities carry the suffix ``_inner`` / ``_outer``.
 """
 from __future__ import annotations
 
 from typing import Any, Callable
 
-import numpy as np
-
+from ..fem import srb_conformal
+from ..geometry.srb import radii
 from ..result import ModelResult
 from ..scene import Key, Scene, build_scene, check_body_pair, material_keys, tolerance_key
 from . import point_contact
 
 CONTACTS = ("inner", "outer")
-MODEL_NAMES = ("analytic", "bem", "fem")
+MODEL_NAMES = ("analytic", "bem", "fem", "fem_conformal")
 
 SCHEMA: dict[str, Key] = {
     "geometry.roller_diameter": Key("float", "m", "roller nominal diameter D", lo=0.0),
@@ -43,6 +38,7 @@ SCHEMA: dict[str, Key] = {
     "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
     "models.references": Key("list", "-", "models every other model is compared against", choices=MODEL_NAMES),
     **{k: v for k, v in point_contact.SCHEMA.items() if k.startswith("numerics.") and "stress" not in k},
+    **srb_conformal.FEM_SCHEMA,
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -51,22 +47,18 @@ DEFAULTS: dict[str, Any] = {
     "models.run": ["analytic", "bem"],
     "models.references": ["analytic"],
     **{k: v for k, v in point_contact.DEFAULTS.items() if k.startswith("numerics.") and "stress" not in k},
+    **srb_conformal.FEM_DEFAULTS,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal")
 DEPENDS = {"fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-                   "code": point_contact.DEPENDS["fem"]["code"] + ("problems/srb_contact.py",),
-                   "reference": True}}
-
-
-def radii(params: dict[str, Any]) -> dict[str, tuple[float, float]]:
-    """(Rx, Ry) in m of the inner and outer contact (see the module docstring)."""
-    D, R, alpha = params["geometry.roller_diameter"], params["geometry.crown_radius"], params["geometry.contact_angle"]
-    r_i, r_e = params["geometry.groove_radius_inner"], params["geometry.groove_radius_outer"]
-    r_m = (r_e - 0.5 * D) * np.cos(alpha)
-    roll_i, roll_e = r_m - 0.5 * D * np.cos(alpha), r_m + 0.5 * D * np.cos(alpha)
-    return {"inner": (1.0 / (2.0 / D + np.cos(alpha) / roll_i), 1.0 / (1.0 / R - 1.0 / r_i)),
-            "outer": (1.0 / (2.0 / D - np.cos(alpha) / roll_e), 1.0 / (1.0 / R - 1.0 / r_e))}
+                   "code": point_contact.DEPENDS["fem"]["code"] + ("geometry/srb.py",),
+                   "reference": True},
+           "fem_conformal": {"params": ("geometry.", "load.", "materials.", "numerics.conformal_"),
+                             "code": ("fem/srb_conformal.py", "fem/two_body.py", "fem/mesh_srb.py",
+                                      "fem/elasticity3d.py", "fem/convergence.py", "geometry/srb.py",
+                                      "analytic/hertz.py", "qoi.py", "materials.py", "result.py"),
+                             "reference": True}}
 
 
 def validate(params: dict[str, Any]) -> None:
@@ -86,7 +78,8 @@ def validate(params: dict[str, Any]) -> None:
 
 def _contact_params(params: dict[str, Any], contact: str) -> dict[str, Any]:
     rx, ry = radii(params)[contact]
-    out = {k: v for k, v in params.items() if k.startswith(("numerics.", "load."))}
+    out = {k: v for k, v in params.items() if k.startswith(("numerics.", "load."))
+           and not k.startswith("numerics.conformal_")}
     out.update({"geometry.Rx": float(rx), "geometry.Ry": float(ry), "geometry.profile": "paraboloid",
                 "outputs.subsurface_stress": False, "models.run": ["analytic"], "models.references": ["analytic"]})
     for body, src in (("body1", "roller"), ("body2", "ring")):
@@ -136,7 +129,14 @@ def _both(name: str) -> Callable[..., ModelResult]:
     return run
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {n: _both(n) for n in MODEL_NAMES}
+def fem_conformal(scene: Scene, progress=None) -> ModelResult:
+    """Conformal FE sub-model: the roller segment and each raceway segment meshed, two-body node-to-surface
+    contact (:mod:`femcheck.fem.srb_conformal`)."""
+    return srb_conformal.model(scene.params, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {**{n: _both(n) for n in MODEL_NAMES if n != "fem_conformal"},
+                                                 "fem_conformal": fem_conformal}
 
 
 def load_of(scene: Scene) -> float:
