@@ -40,3 +40,19 @@ def test_exact_tends_to_linear_theory_at_small_creepage():
             models=["exact", "linear"]).models
     assert m["exact"].quantities["creep_force_x"] == pytest.approx(m["linear"].quantities["creep_force_x"],
                                                                    rel=0.01)
+
+
+def test_report_shows_traction_and_adhesion_areas(tmp_path, combined):
+    # the report of a friction scene carries the traction profile and the adhesion/slip map of the exact theory
+    from femcheck.report.html import write_report
+
+    res = run(load_scene("creep-curve"), models=["exact", "fastsim"])
+    index = write_report([res], tmp_path / "r", "friction", 0.0)
+    html = index.read_text()
+    for key in ("traction", "adhesion"):
+        png = index.parent / f"00-creep-curve-{key}.png"
+        assert png.is_file() and png.stat().st_size > 10_000 and png.name in html
+    # the adhesion map is the exact model's: its stick fraction over the loaded cells is the reported one
+    ex = res.models["exact"]
+    loaded = ex.fields["pressure_map"] > 0
+    assert ex.fields["adhesion_map"][loaded].mean() == pytest.approx(ex.quantities["adhesion_fraction"], abs=0.02)

@@ -63,7 +63,8 @@ def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float)
         scenes = []
         for i, r in enumerate(runs):
             figs = {}
-            for key, fn in (("pressure", plots.pressure_overlay), ("axial", plots.axial_profile),
+            for key, fn in (("pressure", plots.pressure_overlay), ("traction", plots.traction_overlay),
+                            ("adhesion", plots.adhesion_map), ("axial", plots.axial_profile),
                             ("map", plots.pressure_map), ("mesh", plots.fem_mesh),
                             ("convergence", plots.fem_convergence), ("stress", plots.stress_field)):
                 name = fn(r, tmp / f"{i:02d}-{r.scene}-{key}.png")

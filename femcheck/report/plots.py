@@ -71,6 +71,47 @@ def pressure_map(run: RunResult, path: Path) -> str | None:
     return _save(fig, path)
 
 
+def traction_overlay(run: RunResult, path: Path) -> str | None:
+    """Tangential traction along the rolling direction (2D: the whole profile; 3D: the centre line y = 0) of
+    every model that has one, with the traction bound mu p of the first such model."""
+    models = {k: m for k, m in run.models.items() if m.status == "ok" and "x" in m.fields
+              and ("traction" in m.fields or "traction_x" in m.fields)}
+    if not models:
+        return None
+    fig, ax = plt.subplots(figsize=(6.4, 3.7))
+    for name, m in models.items():
+        q = m.fields.get("traction", m.fields.get("traction_x"))
+        ax.plot(m.fields["x"] * 1e3, q / 1e9, label=name, **STYLE.get(name, {}))
+    mu = run.params.get("friction.mu")
+    first = next(iter(models.values()))
+    if mu is not None and "pressure" in first.fields:
+        sign = -1.0 if np.sum(first.fields.get("traction", first.fields.get("traction_x"))) < 0 else 1.0
+        ax.plot(first.fields["x"] * 1e3, sign * mu * first.fields["pressure"] / 1e9, color="0.6", lw=0.8,
+                ls=":", label="traction bound mu p")
+    ax.set_xlabel("x, rolling direction (mm)")
+    ax.set_ylabel("tangential traction (GPa)")
+    ax.set_title(f"{run.scene}: tangential traction")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def adhesion_map(run: RunResult, path: Path) -> str | None:
+    """Adhesion (stick) and slip areas of the first model that gives an adhesion map (3D exact theory)."""
+    m = next((m for m in run.models.values() if m.status == "ok" and "adhesion_map" in m.fields), None)
+    if m is None:
+        return None
+    x, y = m.fields["map_x"], m.fields["map_y"]
+    state = np.where(m.fields["pressure_map"] > 0, 1.0 + m.fields["adhesion_map"], 0.0)   # 0 out, 1 slip, 2 stick
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    cmap = matplotlib.colors.ListedColormap(["white", "tab:orange", "tab:blue"])
+    ax.pcolormesh(y * 1e3, x * 1e3, state, shading="nearest", cmap=cmap, vmin=-0.5, vmax=2.5)
+    ax.set_xlabel("y (mm)")
+    ax.set_ylabel("x, rolling direction (mm)")
+    ax.set_title(f"{run.scene}: adhesion (blue) and slip (orange) areas ({m.model})")
+    return _save(fig, path)
+
+
 def fem_mesh(run: RunResult, path: Path) -> str | None:
     """The FE mesh near the contact (finest level), coloured by body."""
     m = run.models.get("fem")
