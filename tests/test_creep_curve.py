@@ -56,3 +56,14 @@ def test_report_shows_traction_and_adhesion_areas(tmp_path, combined):
     ex = res.models["exact"]
     loaded = ex.fields["pressure_map"] > 0
     assert ex.fields["adhesion_map"][loaded].mean() == pytest.approx(ex.quantities["adhesion_fraction"], abs=0.02)
+
+
+def test_stress_case_counts_a_skipped_model_as_not_applicable():
+    # a rigid body couples normal and tangential problems: linear theory and FASTSIM say they do not apply
+    # (skipped); the stress sweep must not report that as a failure, while the exact model still runs
+    from femcheck.stability import StressCase, _run_case
+
+    sc = load_scene("creep-curve", {"models.run": "exact,linear,fastsim"})
+    case = _run_case((sc, StressCase("rigid body1", {"materials.body1.rigid": True})))
+    assert case.status == "ok", case.problems
+    assert case.models["linear"]["status"] == "skipped" and case.models["exact"]["status"] == "ok"

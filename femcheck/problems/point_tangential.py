@@ -343,7 +343,10 @@ def stress_cases(scene: Scene) -> list:
     from ..stability import StressCase
 
     p = scene.params
-    cases = [StressCase(f"mu={mu:g}", {"friction.mu": mu}) for mu in (0.01, 1.0, 2.0)]
+    # a shift problem keeps Q / (mu P) when mu changes (a fixed Q would just leave the partial-slip range)
+    scale = (lambda mu: {"load.tangential": p["load.tangential"] * mu / p["friction.mu"]}) \
+        if problem_type(p) == "shift" else (lambda mu: {})
+    cases = [StressCase(f"mu={mu:g}", {"friction.mu": mu, **scale(mu)}) for mu in (0.01, 1.0, 2.0)]
     h = _hertz(p)
     cc = _constants(p)
     if problem_type(p) == "shift":
