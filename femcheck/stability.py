@@ -51,8 +51,8 @@ def _run_case(args: tuple[Scene, StressCase]) -> StressCase:
         if c.reference == reference and c.quantity in watched:
             case.models.setdefault(c.model, {})[f"err_{c.quantity}"] = c.rel_error
             if c.passed is False:
-                case.problems.append(f"{c.model}: {c.quantity} off {reference} by {c.rel_error:.2%} "
-                                     f"(tolerance {c.tolerance:.2%})")
+                case.problems.append(f"{c.model}: {c.quantity} off {reference} by {c.rel_error:.3g} relative "
+                                     f"(tolerance {c.tolerance:.3g})")
                 worst = worst if worst == "failed" else "inaccurate"
     case.status = worst
     return case

@@ -36,6 +36,8 @@ from ..scene import Key, Scene, check_body_pair, elastic, material_keys, toleran
 
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "strip")
 ROLLING_ONLY = ("linear", "fastsim", "full_slip", "strip")
+# what `femcheck stress` judges against the reference (where the scene sets a tolerance)
+STRESS_QUANTITIES = ("shift", "stick_radius", "semi_axis_x", "semi_axis_y", "creep_force_x", "creep_force_y")
 MAX_A_OVER_R = 0.1
 MAX_DENSE_CELLS = 61             # dense Newton matrix of a 61 x 61 grid: ~2900 elements, 0.5 GB, minutes per step
 QUASI_IDENTICAL_TOL = 1e-9       # |K| below this: no normal-tangential coupling
