@@ -202,6 +202,9 @@ def exact(scene: Scene, progress=None) -> ModelResult:
         q.update(creep_force_y=sol.creep_force_y, spin_moment=sol.spin_moment,
                  adhesion_fraction=sol.adhesion_fraction)
     stats = {**{k: v for k, v in sol.stats.items() if k != "history"}, "problem": kind,
+             # the keys every model reports (report table, bench): Newton iterations and the Coulomb residual
+             "iterations": sol.stats.get("newton_iterations"), "residual": sol.stats.get("tangential_residual"),
+             "n_elements": g.nx * g.ny,
              "coupling_K": cc.coupling, "G": cc.shear_modulus, "nu": cc.poisson,
              "a_over_dx": h.semi_axis_x / g.dx,
              "solver": ("semi-smooth Newton (matrix-free FGMRES, DC-FFT)" if sol.stats["tangential_solver"] == "fft"
