@@ -140,3 +140,28 @@ def test_srb_conformal_refuses_rigid_ring():
 
     with pytest.raises(InputError, match="materials.ring.rigid"):
         srb_conformal.solve_contact({**SRB, "materials.ring.rigid": True}, "inner", 0)
+
+
+@pytest.mark.parametrize("stretch", [1.0, 4.0])
+def test_srb_roller_segment_volume_stretched_mesh(stretch):
+    # the y-stretched mesh (meshed in y / stretch coordinates, mapped back) must be the same solid: the 90 deg
+    # sector of the barrel about its axis has the closed-form volume (pi/4) int rho(y)^2 dy over |y| <= L,
+    # rho(y) = D/2 - (R - sqrt(R^2 - y^2)) (seed 000 Table 1 roller). Faceting of the P1 boundary removes
+    # about (4/3) h^2 / (8 rho^2) of it: h = 0.6 mm everywhere on rho ~ 9.9 mm gives 0.06 %; tolerance 0.2 %.
+    from scipy.integrate import quad
+
+    from femcheck.fem.mesh_srb import RollerSegmentSpec, roller_segment
+
+    D, R, L = 0.0198, 0.1003, 0.012
+    rho = lambda y: 0.5 * D - (R - np.sqrt(R * R - y * y))
+    exact = 0.25 * np.pi * quad(lambda y: rho(y) ** 2, -L, L)[0]
+    m = roller_segment(RollerSegmentSpec(D, R, L, 0.0003, 0.009, 0.0006, 0.3, 0.0006 * stretch, stretch))
+    P, T = m.points, m.tets
+    vol = np.einsum("ij,ij->j", np.cross((P[:, T[1]] - P[:, T[0]]).T, (P[:, T[2]] - P[:, T[0]]).T).T,
+                    P[:, T[3]] - P[:, T[0]]) / 6.0
+    assert np.all(vol > 0) or np.all(vol < 0)                  # no inverted tetrahedron after the map back
+    assert abs(vol.sum()) == pytest.approx(exact, rel=2e-3)
+    # contact-face nodes on the barrel: distance from the roller axis equals rho(y) (closed form), to rounding
+    top = np.unique(m.top)
+    r_axis = np.hypot(P[0, top], P[2, top] - 0.5 * D)
+    assert np.allclose(r_axis, rho(P[1, top]), rtol=0.0, atol=1e-12)

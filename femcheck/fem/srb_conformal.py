@@ -62,6 +62,9 @@ FEM_SCHEMA: dict[str, Key] = {
                                       lo_closed=True, hi_closed=True),
     "numerics.conformal_depth": Key("float", "b_H", "raceway segment depth and length in x", lo=0.3, hi=3.0,
                                     lo_closed=True, hi_closed=True),
+    "numerics.conformal_stretch": Key("float", "-", "conformal FEM element aspect ratio over the contact zone: "
+                                      "size along y (roller axis) / size across (x, z)", lo=1.0, hi=16.0,
+                                      lo_closed=True, hi_closed=True),
     "numerics.conformal_solver": Key("str", "-", "linear solver (auto: LU up to 6000 DOFs, AMG-CG above)",
                                      choices=("auto", "direct", "amg")),
 }
@@ -74,6 +77,7 @@ FEM_DEFAULTS: dict[str, Any] = {
     "numerics.conformal_contact_zone": 1.3,
     "numerics.conformal_segment": 1.5,
     "numerics.conformal_depth": 1.0,
+    "numerics.conformal_stretch": 1.0,
     "numerics.conformal_solver": "auto",
 }
 
@@ -119,9 +123,10 @@ def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str,
     half = s["numerics.conformal_segment"] * b
     depth = s["numerics.conformal_depth"] * b
     D, R = params["geometry.roller_diameter"], params["geometry.crown_radius"]
-    rspec = RollerSegmentSpec(D, R, half, zx, zy, hc, grading, h_max)
+    stretch = float(s["numerics.conformal_stretch"])
+    rspec = RollerSegmentSpec(D, R, half, zx, zy, hc, grading, h_max, stretch)
     gspec = RingSegmentSpec(g["groove_radius"], g["axis_y"], g["axis_z"], g["tilt"], half, depth, depth, zx, zy, hc,
-                            grading, h_max)
+                            grading, h_max, stretch)
     t0 = time.perf_counter()
     rm, gm = roller_segment(rspec), ring_segment(gspec)
     mesh_s = time.perf_counter() - t0
