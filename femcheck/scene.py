@@ -108,6 +108,29 @@ def fem_mesh_keys(levels_hi: int, h_contact_lo: float, h_contact_hi: float, h_ma
     }
 
 
+def fem_line_mesh_keys() -> dict[str, Key]:
+    """The mesh-family keys of the 2D plane-strain FE models (frictionless and frictional line contact): sizes
+    in Hertz half-widths a_H of the coarsest level, halved per level."""
+    return {
+        "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson)", lo=1, hi=6,
+                                   lo_closed=True, hi_closed=True),
+        "numerics.fem_h_contact": Key("float", "a_H", "coarsest element size on the contact / a_H", lo=0.0,
+                                      hi=0.5, hi_closed=True),
+        "numerics.fem_grading": Key("float", "-", "coarsest mesh growth rate away from the contact", lo=0.0,
+                                    hi=1.0, hi_closed=True),
+        "numerics.fem_contact_zone": Key("float", "a_H", "candidate contact zone / a_H", lo=1.05, hi=3.0,
+                                         hi_closed=True),
+        "numerics.fem_block_width": Key("float", "a_H", "block width / a_H", lo=40.0, hi=1000.0, lo_closed=True,
+                                        hi_closed=True),
+        "numerics.fem_block_depth": Key("float", "a_H", "block depth / a_H", lo=20.0, hi=1000.0, lo_closed=True,
+                                        hi_closed=True),
+        "numerics.fem_order": Key("int", "-", "element order (P1 or P2)", lo=1, hi=2, lo_closed=True,
+                                  hi_closed=True),
+        "numerics.fem_formulation": Key("str", "-", "auto: mixed u-p (Taylor-Hood) above nu = 0.45",
+                                        choices=("auto", "displacement", "mixed")),
+    }
+
+
 def material_keys(body: str) -> dict[str, Key]:
     return {
         f"materials.{body}.E": Key("float", "Pa", f"Young's modulus of the {body}", lo=0.0),

@@ -46,7 +46,7 @@ import numpy as np
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic, effective_modulus
 from ..result import ModelResult
-from ..scene import Key, elastic
+from ..scene import Key, elastic, fem_line_mesh_keys
 from ..qoi import contact_edge, half_width as profile_half_width
 from . import friction
 from .convergence import richardson
@@ -346,22 +346,7 @@ def decoupled(pair: ContactPair) -> ContactPair:
 
 _DEF = FrictionLineSettings()
 FEM_SCHEMA = {
-    "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson)", lo=1, hi=6, lo_closed=True,
-                                hi_closed=True),
-    "numerics.fem_h_contact": Key("float", "a_H", "coarsest element size on the contact / a_H", lo=0.0, hi=0.5,
-                                   hi_closed=True),
-    "numerics.fem_grading": Key("float", "-", "coarsest mesh growth rate away from the contact", lo=0.0, hi=1.0,
-                                 hi_closed=True),
-    "numerics.fem_contact_zone": Key("float", "a_H", "candidate contact zone half-length / a_H", lo=1.05,
-                                      hi=3.0, hi_closed=True),
-    "numerics.fem_block_width": Key("float", "a_H", "block width / a_H", lo=40.0, hi=1000.0, lo_closed=True,
-                                     hi_closed=True),
-    "numerics.fem_block_depth": Key("float", "a_H", "block depth / a_H", lo=20.0, hi=1000.0, lo_closed=True,
-                                     hi_closed=True),
-    "numerics.fem_order": Key("int", "-", "element order (P1 or P2)", lo=1, hi=2, lo_closed=True,
-                               hi_closed=True),
-    "numerics.fem_formulation": Key("str", "-", "auto: mixed u-p (Taylor-Hood) above nu = 0.45",
-                                     choices=("auto", "displacement", "mixed")),
+    **fem_line_mesh_keys(),
     "numerics.fem_coupling": Key("str", "-", "normal-tangential coupling: auto (johnson for quasi-identical "
                                   "bodies, else full), full, johnson", choices=("auto", "full", "johnson")),
     "numerics.fem_normal_steps": Key("int", "-", "normal load increments of the shift problem (0: auto)", lo=0,

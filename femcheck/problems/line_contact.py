@@ -17,7 +17,7 @@ from ..fem.line_contact import FEMLineSettings, extrapolate, solve_level
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, fem_line_mesh_keys, material_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1   # beyond this the half-space and small-strain assumptions of every model here fail
@@ -36,22 +36,7 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_domain": Key("float", "a_H", "BEM domain half-length / Hertz half-width", lo=1.05, hi=20.0,
                                hi_closed=True),
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
-    "numerics.fem_levels": Key("int", "-", "FEM mesh levels (>= 3 for Richardson)", lo=1, hi=6,
-                               lo_closed=True, hi_closed=True),
-    "numerics.fem_h_contact": Key("float", "a_H", "coarsest element size on the contact / a_H", lo=0.0,
-                                  hi=0.5, hi_closed=True),
-    "numerics.fem_grading": Key("float", "-", "coarsest mesh growth rate away from the contact", lo=0.0,
-                                hi=1.0, hi_closed=True),
-    "numerics.fem_contact_zone": Key("float", "a_H", "candidate contact zone / a_H", lo=1.05, hi=3.0,
-                                     hi_closed=True),
-    "numerics.fem_block_width": Key("float", "a_H", "block width / a_H", lo=40.0, hi=1000.0, lo_closed=True,
-                                    hi_closed=True),
-    "numerics.fem_block_depth": Key("float", "a_H", "block depth / a_H", lo=20.0, hi=1000.0, lo_closed=True,
-                                    hi_closed=True),
-    "numerics.fem_order": Key("int", "-", "element order (P1 or P2)", lo=1, hi=2, lo_closed=True,
-                              hi_closed=True),
-    "numerics.fem_formulation": Key("str", "-", "auto: mixed u-p (Taylor-Hood) above nu = 0.45",
-                                    choices=("auto", "displacement", "mixed")),
+    **fem_line_mesh_keys(),
     "numerics.fem_method": Key("str", "-", "contact algorithm", choices=("active_set", "penalty")),
     "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E* / h)", lo=1.0, hi=1e9, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
