@@ -179,6 +179,32 @@ def _project(z: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     return z * scale, nz, inside
 
 
+def coulomb_residual(p: np.ndarray, s: np.ndarray, r, g: np.ndarray, load: np.ndarray | None,
+                     cell_area: float) -> tuple[np.ndarray, tuple]:
+    """Residual F of the Coulomb law as the fixed point p = Proj_g(p - r s) (tractions p (2, C) in Pa, slips
+    s (2, C), regularisation r in Pa per unit slip, bounds g = mu pn); with ``load`` (shift problem) the force
+    balance cell_area * sum(p) = load is appended, scaled so that a force error reads like a traction error.
+    Returns (F, (z, |z|, inside, s)) with z = p - r s, the state the Newton derivative needs."""
+    z = p - r * s
+    proj, nz, inside = _project(z, g)
+    F = (p - proj).ravel()
+    if load is not None:
+        F = np.concatenate([F, (cell_area * p.sum(axis=1) - load) / (cell_area * p.shape[1])])
+    return F, (z, nz, inside, s)
+
+
+def projection_derivative(z: np.ndarray, nz: np.ndarray, inside: np.ndarray, g: np.ndarray):
+    """Per-element 2 x 2 derivative of the projection onto the disc |q| <= g at z: I inside, (g/|z|)(I - n n^T)
+    outside, n = z/|z|. Returns (pxx, pyy, pxy, nx, ny)."""
+    nzs = np.where(nz > 0, nz, 1.0)
+    ex, ey = z[0] / nzs, z[1] / nzs
+    fac = np.where(inside, 1.0, g / nzs)
+    pxx = np.where(inside, 1.0, fac * (1.0 - ex * ex))
+    pyy = np.where(inside, 1.0, fac * (1.0 - ey * ey))
+    pxy = np.where(inside, 0.0, -fac * ex * ey)
+    return pxx, pyy, pxy, ex, ey
+
+
 def nonmonotone_step(x: np.ndarray, dx: np.ndarray, residual_vec: Callable, merits: list[float],
                      first: bool) -> tuple[np.ndarray, np.ndarray, object, float]:
     """Back-track along the Newton step ``dx`` until the merit |F|^2 improves on the worst of the last
@@ -229,15 +255,7 @@ def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarr
         return s
 
     def residual_vec(x: np.ndarray) -> tuple[np.ndarray, tuple]:
-        p = x[:2 * C].reshape(2, C)
-        s = slip(x)
-        z = p - r * s
-        proj, nz, inside = _project(z, g)
-        F = (p - proj).ravel()
-        if shift_problem:
-            # scaled so that a force error reads like a traction error
-            F = np.concatenate([F, (cell_area * p.sum(axis=1) - load) / (cell_area * C)])
-        return F, (z, nz, inside)
+        return coulomb_residual(x[:2 * C].reshape(2, C), slip(x), r, g, load, cell_area)
 
     x = np.zeros(n)
     if p0 is not None:
@@ -253,18 +271,12 @@ def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarr
     for it in range(1, max_iter + 1):
         if res < tol:
             p = x[:2 * C].reshape(2, C)
-            s = slip(x)
-            stick = aux[2]
+            stick, s = aux[2], aux[3]
             return TangentialResult(p.copy(), np.where(stick, 0.0, s), stick,
                                     x[2 * C:] / r_mean if shift_problem else None, it - 1, res)
-        z, nz, inside = aux
-        # Pi: derivative of the projection, per element 2x2: I inside, (g/|z|)(I - n n^T) outside
-        nzs = np.where(nz > 0, nz, 1.0)
-        ex, ey = z[0] / nzs, z[1] / nzs
-        fac = np.where(inside, 1.0, g / nzs)
-        pxx = np.where(inside, 1.0, fac * (1.0 - ex * ex))
-        pyy = np.where(inside, 1.0, fac * (1.0 - ey * ey))
-        pxy = np.where(inside, 0.0, -fac * ex * ey)
+        z, nz, inside, _ = aux
+        # Pi: derivative of the projection, per element 2x2
+        pxx, pyy, pxy, _, _ = projection_derivative(z, nz, inside, g)
         # J = I - Pi + Pi r dS/dx  (dS/dp = B, dS/ddelta = I)
         Bx, By = B[:C], B[C:]
         J = np.zeros((n, n))

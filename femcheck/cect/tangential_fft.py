@@ -237,14 +237,6 @@ def solve_adhesion(g: Grid, cells: tuple[np.ndarray, np.ndarray], constants: Com
     return (np.stack(out) if many else out[0]), res
 
 
-def _project(z: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Projection of the (2, C) vectors z onto the discs |q| <= g; returns (proj, |z|, inside mask)."""
-    nz = np.hypot(z[0], z[1])
-    inside = nz <= g
-    scale = np.where(inside, 1.0, g / np.where(nz > 0, nz, 1.0))
-    return z * scale, nz, inside
-
-
 def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constants: CombinedConstants,
                          w: np.ndarray, bound: np.ndarray, rolling: bool, load: np.ndarray | None = None,
                          tol: float = 1e-10, max_iter: int = 200, p0: np.ndarray | None = None,
@@ -261,7 +253,7 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
     unknown. ``p0``, ``shift0`` warm start. Newton stops when max|F| / max g < ``tol``; ConvergenceError after
     ``max_iter`` Newton steps or when a Newton system cannot be solved by GMRES to its forcing tolerance.
     """
-    from .exact import TangentialResult, nonmonotone_step
+    from .exact import TangentialResult, coulomb_residual, nonmonotone_step, projection_derivative
 
     op, prec = tangential_operators(g, constants, rolling)
     R = _Restricted(g, cells)
@@ -288,14 +280,7 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
         return s
 
     def residual_vec(x: np.ndarray):
-        p = x[:2 * C].reshape(2, C)
-        s = slip(x)
-        z = p - r * s
-        proj, nz, inside = _project(z, gbound)
-        F = (p - proj).ravel()
-        if shift_problem:
-            F = np.concatenate([F, (cell_area * p.sum(axis=1) - load) / (cell_area * C)])
-        return F, (z, nz, inside, s)
+        return coulomb_residual(x[:2 * C].reshape(2, C), slip(x), r, gbound, load, cell_area)
 
     x = np.zeros(n)
     if p0 is not None:
@@ -316,12 +301,8 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
                                     x[2 * C:] / r if shift_problem else None, it - 1, res,
                                     linear_iterations=linear_iterations)
         z, nz, inside, _ = aux
-        nzs = np.where(nz > 0, nz, 1.0)
-        ex, ey = z[0] / nzs, z[1] / nzs
-        fac = np.where(inside, 1.0, gbound / nzs)
-        pxx = np.where(inside, 1.0, fac * (1.0 - ex * ex))
-        pyy = np.where(inside, 1.0, fac * (1.0 - ey * ey))
-        pxy = np.where(inside, 0.0, -fac * ex * ey)
+        pxx, pyy, pxy, ex, ey = projection_derivative(z, nz, inside, gbound)
+        fac = gbound / np.where(nz > 0, nz, 1.0)          # g/|z|, used on sliding elements only
         sliding = ~inside
         nx_, ny_ = np.where(sliding, ex, 0.0), np.where(sliding, ey, 0.0)
         tx_, ty_ = -ny_, nx_
