@@ -56,6 +56,39 @@ class TetMesh:
         return self.points.shape[1]
 
 
+def background_size(model, expr: str) -> None:
+    """Element sizes from the MathEval expression ``expr`` (x, y, z in m) alone, no size from boundaries,
+    points or curvature, and HXT for the volumes (call inside an open Gmsh session, before ``generate``)."""
+    import gmsh
+
+    f = model.mesh.field
+    size = f.add("MathEval")
+    f.setString(size, "F", expr)
+    f.setAsBackgroundMesh(size)
+    for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
+        gmsh.option.setNumber(opt, 0)
+    gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+
+
+def node_table(model) -> tuple[np.ndarray, np.ndarray]:
+    """(points (3, N) in m, index): ``index[tag]`` is the column of the Gmsh node ``tag`` (-1 if none)."""
+    tags, coords, _ = model.mesh.getNodes()
+    index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(tags.size)
+    return coords.reshape(-1, 3).T.copy(), index
+
+
+def drop_unused_nodes(points: np.ndarray, tets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Gmsh keeps a few nodes no tetrahedron uses (geometry points); drop them so every DOF is live. Returns
+    (points, tets, remap) with remap[old] = new (-1 for a dropped node), or remap None when nothing is dropped."""
+    used = np.unique(tets)
+    if used.size == points.shape[1]:
+        return points, tets, None
+    remap = np.full(points.shape[1], -1, dtype=np.int64)
+    remap[used] = np.arange(used.size)
+    return points[:, used], remap[tets], remap
+
+
 def block_quarter(spec: BlockSpec, threads: int = 1) -> TetMesh:
     """Mesh the quarter block of ``spec`` with Gmsh (OCC box, MathEval size field, HXT).
 
@@ -78,32 +111,18 @@ def block_quarter(spec: BlockSpec, threads: int = 1) -> TetMesh:
             # distance from the fine half-ellipsoid, in the ellipse's own scaled metric (exact on the axes)
             rho = f"Sqrt((x/{spec.zone_x!r})^2 + (y/{spec.zone_y!r})^2 + (z/{zz!r})^2)"
             dist = f"Max(0, {rho} - 1) * {zz!r}"
-        f = model.mesh.field
-        size = f.add("MathEval")
-        f.setString(size, "F", f"Min({spec.h_max!r}, {spec.h_contact!r} + {spec.grading!r} * {dist})")
-        f.setAsBackgroundMesh(size)
-        import gmsh
-
-        for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
-            gmsh.option.setNumber(opt, 0)
-        gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+        background_size(model, f"Min({spec.h_max!r}, {spec.h_contact!r} + {spec.grading!r} * {dist})")
         model.addPhysicalGroup(3, [box], 1)
         model.addPhysicalGroup(2, top, 2)
         model.mesh.generate(3)
-        tags, coords, _ = model.mesh.getNodes()
-        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-        index[tags] = np.arange(tags.size)
-        points = coords.reshape(-1, 3).T.copy()
+        points, index = node_table(model)
         _, elem_tags, elem_nodes = model.mesh.getElements(3, box)
         tets = index[np.asarray(elem_nodes[0], dtype=np.int64)].reshape(-1, 4).T
         _, _, tri_nodes = model.mesh.getElements(2, top[0])
         tris = index[np.asarray(tri_nodes[0], dtype=np.int64)].reshape(-1, 3).T
-    # Gmsh keeps unused nodes (e.g. geometry points) out of tets only rarely; drop any so DOFs are all live.
-    used = np.unique(tets)
-    if used.size != points.shape[1]:
-        remap = np.full(points.shape[1], -1, dtype=np.int64)
-        remap[used] = np.arange(used.size)
-        points, tets, tris = points[:, used], remap[tets], remap[tris]
+    points, tets, remap = drop_unused_nodes(points, tets)
+    if remap is not None:
+        tris = remap[tris]
     return TetMesh(points, tets, tris, spec)
 
 

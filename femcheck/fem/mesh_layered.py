@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .mesh2d import TriMesh, _Gmsh
+from .mesh3d import TetMesh, background_size, drop_unused_nodes, node_table
 
 LAYER, SUBSTRATE = 0, 1
 
@@ -195,7 +196,7 @@ class LayeredTetMesh:
     triangles of the face z = 0), ``region`` per tetrahedron (LAYER or SUBSTRATE), ``thickness`` t (m),
     ``layer_rows`` element layers through the layer."""
 
-    mesh: "TetMesh"
+    mesh: TetMesh
     region: np.ndarray
     thickness: float
     depth: float
@@ -216,10 +217,6 @@ def coated_block_quarter(length: float, depth: float, thickness: float, sizing: 
     fine half-ball; it shares the layer's bottom surface mesh, so the interface nodes are common. With
     ``rigid_substrate`` only the layer is meshed.
     """
-    import gmsh
-
-    from .mesh3d import TetMesh
-
     s = sizing
     if not (0 < thickness < depth or (rigid_substrate and thickness > 0)):
         raise ValueError("need 0 < thickness < depth")
@@ -242,18 +239,9 @@ def coated_block_quarter(length: float, depth: float, thickness: float, sizing: 
             out2 = geo.extrude([(2, interface)], 0, 0, -(depth - thickness))
             vols[SUBSTRATE] = out2[1][1]
         geo.synchronize()
-        fld = model.mesh.field
-        size = fld.add("MathEval")
-        fld.setString(size, "F", f"Min({hmax!r}, {h0!r} + {g!r} * Max(0, Sqrt(x^2 + y^2 + z^2) - {zone!r}))")
-        fld.setAsBackgroundMesh(size)
-        for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
-            gmsh.option.setNumber(opt, 0)
-        gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+        background_size(model, f"Min({hmax!r}, {h0!r} + {g!r} * Max(0, Sqrt(x^2 + y^2 + z^2) - {zone!r}))")
         model.mesh.generate(3)
-        tags, coords, _ = model.mesh.getNodes()
-        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(tags.size)
-        points = coords.reshape(-1, 3).T.copy()
+        points, index = node_table(model)
         tets, region = [], []
         for r, v in vols.items():
             etypes, _, enodes = model.mesh.getElements(3, v)
@@ -265,10 +253,8 @@ def coated_block_quarter(length: float, depth: float, thickness: float, sizing: 
         etypes, _, enodes = model.mesh.getElements(2, top)
         tris = index[np.asarray(enodes[list(etypes).index(2)], dtype=np.int64)].reshape(-1, 3).T
     tets, region = np.concatenate(tets, axis=1), np.concatenate(region)
-    used = np.unique(tets)
-    if used.size != points.shape[1]:
-        remap = np.full(points.shape[1], -1, dtype=np.int64)
-        remap[used] = np.arange(used.size)
-        points, tets, tris = points[:, used], remap[tets], remap[tris]
+    points, tets, remap = drop_unused_nodes(points, tets)
+    if remap is not None:
+        tris = remap[tris]
     return LayeredTetMesh(TetMesh(points, tets, tris), region, thickness,
                           thickness if rigid_substrate else depth, length, d.size - 1)

@@ -26,7 +26,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from .mesh2d import _Gmsh
-from .mesh3d import BlockSpec, cached_block_quarter, mesh_cache_dir
+from .mesh3d import BlockSpec, background_size, cached_block_quarter, drop_unused_nodes, mesh_cache_dir, node_table
 
 
 @dataclass
@@ -74,18 +74,6 @@ def _cached(kind: str, spec, build) -> BodyMesh:
     return mesh
 
 
-def _size_field(model, expr: str) -> None:
-    import gmsh
-
-    f = model.mesh.field
-    size = f.add("MathEval")
-    f.setString(size, "F", expr)
-    f.setAsBackgroundMesh(size)
-    for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
-        gmsh.option.setNumber(opt, 0)
-    gmsh.option.setNumber("Mesh.Algorithm3D", 10)
-
-
 def _closest_face(model, faces: list[int], point) -> int:
     """The boundary face nearest to ``point`` (a point on that face, away from its edges)."""
     d = [np.linalg.norm(np.asarray(model.getClosestPoint(2, s, point)[0]) - np.asarray(point)) for s in faces]
@@ -94,10 +82,7 @@ def _closest_face(model, faces: list[int], point) -> int:
 
 def _extract(model, volume: int, contact: int, named: dict[str, list[int]]) -> BodyMesh:
     model.mesh.generate(3)
-    tags, coords, _ = model.mesh.getNodes()
-    index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-    index[tags] = np.arange(tags.size)
-    points = coords.reshape(-1, 3).T.copy()
+    points, index = node_table(model)
     _, _, nodes = model.mesh.getElements(3, volume)
     tets = index[np.asarray(nodes[0], dtype=np.int64)].reshape(-1, 4).T
     _, _, tri = model.mesh.getElements(2, contact)
@@ -106,11 +91,9 @@ def _extract(model, volume: int, contact: int, named: dict[str, list[int]]) -> B
     for name, surfs in named.items():
         ids = [model.mesh.getNodes(2, s, includeBoundary=True)[0] for s in surfs]
         faces[name] = np.unique(index[np.concatenate(ids).astype(np.int64)])
-    used = np.unique(tets)
-    if used.size != points.shape[1]:                     # drop nodes no tetrahedron uses (geometry points)
-        remap = np.full(points.shape[1], -1, dtype=np.int64)
-        remap[used] = np.arange(used.size)
-        points, tets, top = points[:, used], remap[tets], remap[top]
+    points, tets, remap = drop_unused_nodes(points, tets)
+    if remap is not None:
+        top = remap[top]
         faces = {k: remap[v][remap[v] >= 0] for k, v in faces.items()}
     return BodyMesh(points, tets, top, faces)
 
@@ -145,7 +128,7 @@ def _ball(spec: BallSpec) -> BodyMesh:
                  "y0": [_closest_face(model, surfs, [0.3 * R, 0.0, 0.5 * R])],
                  "driven": [_closest_face(model, surfs, [0.3 * R, 0.3 * R, R])]}
         dist = f"Max(0, Sqrt(x^2 + y^2 + z^2) - {spec.zone!r})"
-        _size_field(model, f"Min({spec.h_max!r}, {spec.h_contact!r} + {spec.grading!r} * {dist})")
+        background_size(model, f"Min({spec.h_max!r}, {spec.h_contact!r} + {spec.grading!r} * {dist})")
         return _extract(model, v, contact, named)
 
 
@@ -338,7 +321,7 @@ def _roller(spec: RollerSegmentSpec) -> BodyMesh:
         contact = _closest_face(model, surfs, [e, 0.0, r - np.sqrt(r * r - e * e)])
         named = {"x0": [_closest_face(model, surfs, [0.0, 0.0, 0.5 * r])],
                  "driven": [_closest_face(model, surfs, [0.5 * r, 0.0, r])]}
-        _size_field(model, _stretched_size(spec))
+        background_size(model, _stretched_size(spec))
         mesh = _stretched_mesh(model, v, contact, named, s)
     # contact-face nodes exactly on the barrel (the initial gap is a few um over the patch; the NURBS of the
     # transformed solid put nodes off it by rounding only, this removes even that)
@@ -370,7 +353,7 @@ def _ring(spec: RingSegmentSpec) -> BodyMesh:
         contact = _closest_face(model, surfs, [eps, 0.0, 0.0])
         named = {"x0": [_closest_face(model, surfs, [0.0, 0.0, -0.5 * spec.depth])],
                  "bottom": [_closest_face(model, surfs, [eps, 0.0, -spec.depth])]}
-        _size_field(model, _stretched_size(spec))
+        background_size(model, _stretched_size(spec))
         mesh = _stretched_mesh(model, v, contact, named, s)
     top = np.unique(mesh.top)
     mesh.points[:, top] = _ring_surface(mesh.points[:, top], spec)

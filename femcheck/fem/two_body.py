@@ -44,7 +44,7 @@ from typing import Callable
 import numpy as np
 import pyamg
 from scipy.sparse import block_diag, coo_matrix, csr_matrix, diags, identity
-from scipy.sparse.linalg import LinearOperator, cg, splu
+from scipy.sparse.linalg import cg, splu
 from scipy.spatial import cKDTree
 
 from ..errors import ConvergenceError
