@@ -6,8 +6,8 @@ import pytest
 from femcheck import cache, references
 from femcheck.analytic.hertz import point_contact
 from femcheck.errors import InputError
-from femcheck.fem.elasticity3d import AMGElasticity, make_solid, rigid_body_modes
-from femcheck.fem.mesh3d import BlockSpec, block_quarter
+from femcheck.solvers.elasticity3d import AMGElasticity, make_solid, rigid_body_modes
+from femcheck.meshes.block import BlockSpec, block_quarter
 from femcheck.fem.quarter_block import tributary_areas
 from femcheck.materials import Elastic
 from femcheck.problems import problem
@@ -200,8 +200,8 @@ def test_penalty_tends_to_the_active_set_as_one_over_kappa():
 
 
 def test_displacement_control_returns_the_load_of_load_control(small_block):
-    from femcheck.fem.elasticity3d import DirectElasticity
-    from femcheck.fem.rigid_contact import active_set
+    from femcheck.solvers.elasticity3d import DirectElasticity
+    from femcheck.solvers.rigid_indenter import active_set
 
     solid = make_solid(small_block, Elastic(200e9, 0.3))
     X = solid.basis.doflocs

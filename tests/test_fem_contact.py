@@ -6,10 +6,10 @@ from scipy import optimize
 
 from femcheck.analytic.hertz import line_contact
 from femcheck.errors import ConvergenceError
-from femcheck.fem import contact
-from femcheck.fem.convergence import richardson
+from femcheck.solvers import frictionless
+from femcheck.solvers.convergence import richardson
 from femcheck.fem.line_contact import FEMLineSettings, solve_level
-from femcheck.fem.mesh2d import MeshSpec, block_half, contact_abscissae, cylinder_half
+from femcheck.meshes.plane import MeshSpec, block_half, contact_abscissae, cylinder_half
 from femcheck.materials import Elastic, effective_modulus
 
 
@@ -18,14 +18,14 @@ def _random_system(n=30, seed=1):
     x = np.linspace(0, 1, n)
     W = np.exp(-np.abs(x[:, None] - x[None, :]) / 0.3) + 0.05 * np.eye(n)   # SPD compliance
     W += 0.01 * (lambda M: M @ M.T)(rng.normal(size=(n, n))) / n
-    return contact.CondensedContact(g0=0.5 * x**2, c=-np.ones(n), W=W, force=3.0)
+    return frictionless.CondensedContact(g0=0.5 * x**2, c=-np.ones(n), W=W, force=3.0)
 
 
 def test_active_set_matches_quadratic_program():
     # With c = -1 the contact conditions are the KKT conditions of
     # min 1/2 lam.W.lam + g0.lam  s.t. sum(lam) = F, lam >= 0 (delta is the multiplier of the sum).
     sys = _random_system()
-    sol = contact.active_set(sys)
+    sol = frictionless.active_set(sys)
     qp = optimize.minimize(lambda l: 0.5 * l @ sys.W @ l + sys.g0 @ l, np.full(30, 0.1),
                            jac=lambda l: sys.W @ l + sys.g0, method="SLSQP", bounds=[(0, None)] * 30,
                            constraints=[{"type": "eq", "fun": lambda l: l.sum() - 3.0}],
@@ -38,8 +38,8 @@ def test_active_set_matches_quadratic_program():
 
 def test_penalty_converges_to_active_set_as_one_over_kappa():
     sys = _random_system()
-    exact = contact.active_set(sys).lam
-    errs = [np.abs(contact.penalty(sys, kappa).lam - exact).max() for kappa in (1e3, 1e4, 1e5)]
+    exact = frictionless.active_set(sys).lam
+    errs = [np.abs(frictionless.penalty(sys, kappa).lam - exact).max() for kappa in (1e3, 1e4, 1e5)]
     assert errs[0] / errs[1] == pytest.approx(10, rel=0.2)
     assert errs[1] / errs[2] == pytest.approx(10, rel=0.2)
 
@@ -47,7 +47,7 @@ def test_penalty_converges_to_active_set_as_one_over_kappa():
 def test_active_set_reports_cycling_as_error():
     sys = _random_system()
     with pytest.raises(ConvergenceError, match="primal-dual active set"):
-        contact.active_set(sys, active0=np.eye(1, 30, 29, dtype=bool).ravel(), max_iter=1)
+        frictionless.active_set(sys, active0=np.eye(1, 30, 29, dtype=bool).ravel(), max_iter=1)
 
 
 def test_richardson_recovers_order_and_limit():

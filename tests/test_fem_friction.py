@@ -25,10 +25,11 @@ import numpy as np
 import pytest
 
 from femcheck.errors import ConvergenceError, InputError
-from femcheck.fem import friction, friction_line as fl
-from femcheck.fem.convergence import richardson
-from femcheck.fem.mesh2d import MeshSpec
-from femcheck.fem.mesh2d_full import block_full, cylinder_full
+from femcheck.fem import friction_line as fl
+from femcheck.solvers import coulomb
+from femcheck.solvers.convergence import richardson
+from femcheck.meshes.plane import MeshSpec
+from femcheck.meshes.plane_full import block_full, cylinder_full
 from femcheck.materials import Elastic
 
 R = 0.010          # m
@@ -177,11 +178,11 @@ def test_active_set_reports_non_convergence(pairs):
     """An iteration cap below what the problem needs (measured 8 iterations) raises ConvergenceError."""
     p = pairs["johnson"][0]
     n = p.x.size
-    sys = friction.FrictionSystem(p.g0, -np.ones(n), p.A_yy, p.A_yx, np.full(n, 0.5 * XI_S), None,
+    sys = coulomb.FrictionSystem(p.g0, -np.ones(n), p.A_yy, p.A_yx, np.full(n, 0.5 * XI_S), None,
                                   -fl.upwind_derivative(p.x) @ p.A_xy, -fl.upwind_derivative(p.x) @ p.A_xx,
                                   W, None, MU)
     with pytest.raises(ConvergenceError):
-        friction.solve(sys, np.abs(p.x) <= A_H, max_iter=2)
+        coulomb.solve(sys, np.abs(p.x) <= A_H, max_iter=2)
 
 
 @pytest.mark.parametrize("scene, quantities", [("carter-2d", ("creep_force_x", "adhesion_length")),

@@ -1,4 +1,4 @@
-"""Layered (coated-block) FE references: femcheck.fem.mesh_layered, layered_line (2D), layered_point (3D).
+"""Layered (coated-block) FE references: femcheck.meshes.coated, layered_line (2D), layered_point (3D).
 
 Every assertion compares with an independent value: a closed form (1D constrained compression, Hertz, Johnson's
 thin-layer solutions, exact edge profiles) with the tolerance and its reason stated next to it.
@@ -14,7 +14,7 @@ from skfem import FacetBasis, LinearForm, asm
 from femcheck.analytic import hertz, thin_layer
 from femcheck.errors import InputError
 from femcheck.fem import layered_line as L
-from femcheck.fem.mesh_layered import LAYER, SUBSTRATE, LayerSizing, coated_block_half, graded_sequence, subdivide
+from femcheck.meshes.coated import LAYER, SUBSTRATE, LayerSizing, coated_block_half, graded_sequence, subdivide
 from femcheck.materials import Elastic
 
 STEEL = Elastic(206e9, 0.30)

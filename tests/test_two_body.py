@@ -1,4 +1,4 @@
-"""Two meshed bodies in frictionless contact (femcheck.fem.two_body) and the conformal SRB sub-model
+"""Two meshed bodies in frictionless contact (femcheck.solvers.two_body) and the conformal SRB sub-model
 (femcheck.fem.srb_conformal), checked against closed forms: uniaxial compression (patch test), Hertz sphere on
 flat (Johnson 1985 eq 4.22-4.23), elliptic Hertz for seed 000's raceway contacts. Coarse meshes only (the fine
 levels and their numbers are in the H7 report)."""
@@ -7,9 +7,9 @@ import pytest
 
 from femcheck.analytic import hertz
 from femcheck.errors import ConvergenceError, InputError
-from femcheck.fem.mesh3d import BlockSpec
-from femcheck.fem.mesh_srb import block_body, flipped_block_body
-from femcheck.fem.two_body import ContactBody, ball_on_block, outward_normals, project, solve_two_body
+from femcheck.meshes.block import BlockSpec
+from femcheck.meshes.srb_segments import block_body, flipped_block_body
+from femcheck.solvers.two_body import ContactBody, ball_on_block, outward_normals, project, solve_two_body
 from femcheck.materials import Elastic, effective_modulus
 
 STEEL, ALU = Elastic(210e9, 0.3), Elastic(70e9, 0.33)
@@ -150,7 +150,7 @@ def test_srb_roller_segment_volume_stretched_mesh(stretch):
     # about (4/3) h^2 / (8 rho^2) of it: h = 0.6 mm everywhere on rho ~ 9.9 mm gives 0.06 %; tolerance 0.2 %.
     from scipy.integrate import quad
 
-    from femcheck.fem.mesh_srb import RollerSegmentSpec, roller_segment
+    from femcheck.meshes.srb_segments import RollerSegmentSpec, roller_segment
 
     D, R, L = 0.0198, 0.1003, 0.012
     rho = lambda y: 0.5 * D - (R - np.sqrt(R * R - y * y))

@@ -44,9 +44,10 @@ from ..bem.convolution import DCFFT
 from ..bem.halfspace import Grid, half_space_operator, half_space_preconditioner
 from ..bem.polonsky_keer import polonsky_keer
 from ..errors import ConvergenceError, InputError
+from .coulomb import TangentialResult, coulomb_residual, nonmonotone_step, project_disc, projection_derivative
 from .influence import CombinedConstants, influence
+from .tangential_fft import solve_tangential_fft
 
-NONMONOTONE_MEMORY = 8
 TANGENTIAL_SOLVERS = ("auto", "dense", "fft")
 # "auto" switches to the matrix-free solver above this many contact elements: the dense Newton matrix costs
 # O(C^3) per step while GMRES with FFT products costs O(C log C) per iteration. Measured on creep-curve
@@ -111,26 +112,6 @@ def displacement(component: str, traction: np.ndarray, g: Grid, constants: Combi
 # results
 # --------------------------------------------------------------------------------------------------------------
 @dataclass
-class TangentialResult:
-    """Tangential solution on the contact elements (like scipy's OptimizeResult).
-
-    ``p`` (2, C) tractions px, py (Pa) on the C contact elements, ``slip`` (2, C) relative slip s (rolling: slip
-    velocity / V, -; shift: m), ``stick`` (C,) adhesion mask, ``shift`` (2,) rigid shift (m; shift problems),
-    ``iterations`` Newton steps, ``residual`` max |F| / max g, ``converged``, ``linear_iterations`` GMRES
-    iterations summed over the Newton steps (matrix-free solver only; 0 for the dense LU).
-    """
-
-    p: np.ndarray
-    slip: np.ndarray
-    stick: np.ndarray
-    shift: np.ndarray | None
-    iterations: int
-    residual: float
-    converged: bool = True
-    linear_iterations: int = 0
-
-
-@dataclass
 class ExactResult:
     """Solution of a rolling or shift contact on grid ``grid``.
 
@@ -171,59 +152,6 @@ class ExactResult:
 # --------------------------------------------------------------------------------------------------------------
 # tangential solver (semi-smooth Newton on the projected Coulomb law)
 # --------------------------------------------------------------------------------------------------------------
-def _project(z: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Projection of the (2, C) vectors z onto the discs |q| <= g; returns (proj, |z|, inside mask)."""
-    nz = np.hypot(z[0], z[1])
-    inside = nz <= g
-    scale = np.where(inside, 1.0, g / np.where(nz > 0, nz, 1.0))
-    return z * scale, nz, inside
-
-
-def coulomb_residual(p: np.ndarray, s: np.ndarray, r, g: np.ndarray, load: np.ndarray | None,
-                     cell_area: float) -> tuple[np.ndarray, tuple]:
-    """Residual F of the Coulomb law as the fixed point p = Proj_g(p - r s) (tractions p (2, C) in Pa, slips
-    s (2, C), regularisation r in Pa per unit slip, bounds g = mu pn); with ``load`` (shift problem) the force
-    balance cell_area * sum(p) = load is appended, scaled so that a force error reads like a traction error.
-    Returns (F, (z, |z|, inside, s)) with z = p - r s, the state the Newton derivative needs."""
-    z = p - r * s
-    proj, nz, inside = _project(z, g)
-    F = (p - proj).ravel()
-    if load is not None:
-        F = np.concatenate([F, (cell_area * p.sum(axis=1) - load) / (cell_area * p.shape[1])])
-    return F, (z, nz, inside, s)
-
-
-def projection_derivative(z: np.ndarray, nz: np.ndarray, inside: np.ndarray, g: np.ndarray):
-    """Per-element 2 x 2 derivative of the projection onto the disc |q| <= g at z: I inside, (g/|z|)(I - n n^T)
-    outside, n = z/|z|. Returns (pxx, pyy, pxy, nx, ny)."""
-    nzs = np.where(nz > 0, nz, 1.0)
-    ex, ey = z[0] / nzs, z[1] / nzs
-    fac = np.where(inside, 1.0, g / nzs)
-    pxx = np.where(inside, 1.0, fac * (1.0 - ex * ex))
-    pyy = np.where(inside, 1.0, fac * (1.0 - ey * ey))
-    pxy = np.where(inside, 0.0, -fac * ex * ey)
-    return pxx, pyy, pxy, ex, ey
-
-
-def nonmonotone_step(x: np.ndarray, dx: np.ndarray, residual_vec: Callable, merits: list[float],
-                     first: bool) -> tuple[np.ndarray, np.ndarray, object, float]:
-    """Back-track along the Newton step ``dx`` until the merit |F|^2 improves on the worst of the last
-    NONMONOTONE_MEMORY merits (Grippo, Lampariello & Lucidi 1986). A monotone search cut most steps here (the
-    active set of the Coulomb law then grows by one ring of elements per step); the full steps converge in a
-    few. The first step from p = 0 is the full-adhesion solution: taken whole whatever its merit. Returns
-    (x, F, aux, merit) at the accepted point."""
-    step = 1.0
-    reference = np.inf if first else max(merits[-NONMONOTONE_MEMORY:])
-    for _ in range(40):
-        x_new = x + step * dx
-        F_new, aux_new = residual_vec(x_new)
-        m_new = float(F_new @ F_new)
-        if m_new < (1.0 - 1e-4 * step) * reference or m_new == 0.0:
-            break
-        step *= 0.5
-    return x_new, F_new, aux_new, m_new
-
-
 def solve_tangential(B: np.ndarray, w: np.ndarray, g: np.ndarray, load: np.ndarray | None = None,
                      cell_area: float = 1.0, tol: float = 1e-10, max_iter: int = 200,
                      p0: np.ndarray | None = None, shift0: np.ndarray | None = None,
@@ -403,7 +331,6 @@ def solve_contact(g: Grid, gap: Gap, constants: CombinedConstants, normal_load: 
             p0, shift0 = tang.p, tang.shift
         name = "steady rolling" if rolling else "shift"
         if use_fft:
-            from .tangential_fft import solve_tangential_fft
             tang = solve_tangential_fft(g, cells, constants, w, mu * pn[cells], rolling, load=load, tol=tol,
                                         p0=p0, shift0=shift0, solver=name)
         else:

@@ -45,6 +45,7 @@ from scipy import fft
 from ..bem.convolution import DCFFT
 from ..bem.halfspace import Grid
 from ..errors import ConvergenceError, InputError
+from .coulomb import TangentialResult, coulomb_residual, nonmonotone_step, projection_derivative
 from .influence import CombinedConstants, influence
 
 
@@ -244,7 +245,7 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
                          linear_rtol_max: float = 1e-2, linear_max_iter: int = 1500):
     """Coulomb friction on the C contact elements ``cells`` of grid ``g`` with slip s = w + S p (+ delta for a
     shift problem); the matrix-free counterpart of :func:`femcheck.cect.exact.solve_tangential`, same equations
-    and the same result object (:class:`femcheck.cect.exact.TangentialResult`, with ``linear_iterations`` the
+    and the same result object (:class:`femcheck.cect.coulomb.TangentialResult`, with ``linear_iterations`` the
     total GMRES iterations).
 
     ``w`` (2, C) slip at zero traction (rolling: (xi - phi y, eta + phi x) plus the pressure coupling, -; shift:
@@ -253,8 +254,6 @@ def solve_tangential_fft(g: Grid, cells: tuple[np.ndarray, np.ndarray], constant
     unknown. ``p0``, ``shift0`` warm start. Newton stops when max|F| / max g < ``tol``; ConvergenceError after
     ``max_iter`` Newton steps or when a Newton system cannot be solved by GMRES to its forcing tolerance.
     """
-    from .exact import TangentialResult, coulomb_residual, nonmonotone_step, projection_derivative
-
     op, prec = tangential_operators(g, constants, rolling)
     R = _Restricted(g, cells)
     C = R.C

@@ -8,7 +8,7 @@ import meshio
 import numpy as np
 
 from ..materials import Elastic
-from .mesh3d import TetMesh
+from ..meshes.block import TetMesh
 
 _TET_FACES = np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
 

@@ -1,8 +1,8 @@
 """2D plane-strain FE reference for line contact with Coulomb friction: Cattaneo shift and steady rolling.
 
 A cylinder (elastic or rigid) of radius R is pressed by W' (N/m) on a clamped elastic block; both bodies are
-meshed whole (:mod:`femcheck.fem.mesh2d_full`), condensed onto matching contact node pairs at abscissae x_i,
-and the frictional contact problem is solved on the condensed system by :mod:`femcheck.fem.friction`.
+meshed whole (:mod:`femcheck.meshes.plane_full`), condensed onto matching contact node pairs at abscissae x_i,
+and the frictional contact problem is solved on the condensed system by :mod:`femcheck.solvers.coulomb`.
 
 Kinematics (x rolling direction, y the common normal pointing into the cylinder, body 1 = cylinder):
 the pair forces on the cylinder are (q_i, p_i), on the block (-q_i, -p_i). With the contact compliances
@@ -32,7 +32,7 @@ displacement is u_rel,x.
   contact line only (Kalker's steady-state Eulerian form). With xi > 0 the cylinder slides forward and
   the friction force on it is negative (Kalker's sign convention, Fx = -G c^2 C11 xi).
 
-Dissimilar materials: the normal and tangential problems are solved together (``friction.solve``), so the
+Dissimilar materials: the normal and tangential problems are solved together (``coulomb.solve``), so the
 normal-tangential coupling of the FE compliances is kept; in the shift problem the normal load is then
 applied in ``normal_steps`` increments (Spence's receding stick zone needs the loading history).
 """
@@ -48,11 +48,11 @@ from ..materials import Elastic, effective_modulus
 from ..result import ModelResult
 from ..scene import Key, elastic, fem_line_mesh_keys
 from ..qoi import contact_edge, half_width as profile_half_width
-from . import friction
-from .convergence import richardson
-from .elasticity import CondensedBody, boundary_dofs, make_body
-from .mesh2d import MeshSpec, TriMesh
-from .mesh2d_full import block_full, cylinder_full
+from ..solvers import coulomb
+from ..solvers.convergence import richardson
+from ..solvers.elasticity2d import CondensedBody, boundary_dofs, make_body
+from ..meshes.plane import MeshSpec, TriMesh
+from ..meshes.plane_full import block_full, cylinder_full
 
 
 @dataclass
@@ -234,9 +234,9 @@ def shift_case(pair: ContactPair, load: float, tangential: float, mu: float, a_r
     for step, (w_k, q_k) in enumerate(path, start=1):
         # slip increment s = u_rel,x - u_rel,x(previous step), u_rel,x = A_xx q + A_xy p + delta_t
         s0 = -(pair.A_xx @ q + pair.A_xy @ p + dt)
-        sys = friction.FrictionSystem(pair.g0, -np.ones(n), pair.A_yy, pair.A_yx, s0, np.ones(n), pair.A_xy,
+        sys = coulomb.FrictionSystem(pair.g0, -np.ones(n), pair.A_yy, pair.A_yx, s0, np.ones(n), pair.A_xy,
                                       pair.A_xx, w_k, -q_k, mu)
-        sol = friction.solve(sys, contact, tol=tol)
+        sol = coulomb.solve(sys, contact, tol=tol)
         p, q, dt, contact = sol.p, sol.q, sol.delta_t, sol.contact
         its += sol.iterations
         res = max(res, sol.residual)
@@ -310,9 +310,9 @@ def rolling_case(pair: ContactPair, load: float, xi: float, mu: float, a_ref: fl
     cylinder), adhesion_length (m), adhesion_fraction (-), p_max, half_width, total_force."""
     n = pair.x.size
     D = upwind_derivative(pair.x)
-    sys = friction.FrictionSystem(pair.g0, -np.ones(n), pair.A_yy, pair.A_yx, np.full(n, float(xi)), None,
+    sys = coulomb.FrictionSystem(pair.g0, -np.ones(n), pair.A_yy, pair.A_yx, np.full(n, float(xi)), None,
                                   -D @ pair.A_xy, -D @ pair.A_xx, load, None, mu)
-    sol = friction.solve(sys, _normal_guess(pair, a_ref), tol=tol)
+    sol = coulomb.solve(sys, _normal_guess(pair, a_ref), tol=tol)
     _check_inside(pair, sol.p, sol.iterations, tol)
     quantities = _base_quantities(pair, sol.p)
     left, right = _zone_edges(pair.x, _stick_margin(pair, sol.p, sol.q, sol.stick, mu))

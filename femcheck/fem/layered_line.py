@@ -5,20 +5,20 @@ layer's bottom clamped, no substrate mesh). The indenter is a rigid circular cyl
 the exact circle g0(x) = R - sqrt(R^2 - x^2). Frictionless, small strain, load control: the approach is the
 extra unknown that makes the contact force equal W' (N/m); the model is the symmetric half x >= 0.
 
-Discretisation (see :mod:`femcheck.fem.mesh_layered`): structured layer with element rows through the
+Discretisation (see :mod:`femcheck.meshes.coated`): structured layer with element rows through the
 thickness, Gmsh-graded substrate, shared interface nodes. Each region is assembled with its own constants and
 the matrices are added (perfect bond = shared DOFs). P2 triangles by default; a region with nu > 0.45 uses the
 Taylor-Hood P2/P1 mixed u-p form (locking-free, nu = 0.5 included) with its own pressure field, so the pressure
 may jump across the interface as the physics requires (p = lambda div u, and lambda jumps there).
 
-Contact: the block is condensed on the contact DOFs (:class:`femcheck.fem.elasticity.CondensedBody`) and the
-primal-dual active set of :mod:`femcheck.fem.contact` solves the Signorini problem; nodal pressure p_i =
+Contact: the block is condensed on the contact DOFs (:class:`femcheck.solvers.elasticity2d.CondensedBody`) and the
+primal-dual active set of :mod:`femcheck.solvers.frictionless` solves the Signorini problem; nodal pressure p_i =
 lam_i / w_i with w_i = int phi_i ds the node's tributary length.
 
 Mesh family: lengths in units of a reference half-width a_ref found by pilot solves on coarse meshes (a layered
 contact's width lies anywhere between the layer's and the substrate's Hertz width, or far below both on a rigid
 base); level k halves every length (nested in the layer), Richardson extrapolation over the last three levels
-(:mod:`femcheck.fem.convergence`). SI units throughout.
+(:mod:`femcheck.solvers.convergence`). SI units throughout.
 """
 from __future__ import annotations
 
@@ -36,10 +36,10 @@ from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
-from . import contact
-from .convergence import Extrapolation, richardson
-from .elasticity import MIXED_ABOVE_NU, Body, CondensedBody, _deviatoric_part, _divergence, _mass
-from .mesh_layered import LAYER, SUBSTRATE, LayeredTriMesh, LayerSizing, coated_block_half
+from ..solvers import frictionless
+from ..solvers.convergence import Extrapolation, richardson
+from ..solvers.elasticity2d import MIXED_ABOVE_NU, Body, CondensedBody, _deviatoric_part, _divergence, _mass
+from ..meshes.coated import LAYER, SUBSTRATE, LayeredTriMesh, LayerSizing, coated_block_half
 
 _ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
 
@@ -238,8 +238,8 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     W = cb.compliance(dofs)
     g0 = radius - np.sqrt(radius**2 - x**2)          # exact circle, at P2 mid-side nodes too
     w = tributary_lengths(basis, f_contact, dofs)
-    sys = contact.CondensedContact(g0, -np.ones_like(x), W, 0.5 * load_per_length)
-    sol = contact.active_set(sys, x <= a_ref, tol=s.tol)
+    sys = frictionless.CondensedContact(g0, -np.ones_like(x), W, 0.5 * load_per_length)
+    sol = frictionless.active_set(sys, x <= a_ref, tol=s.tol)
     p = sol.lam / w
     if p[-1] > 0:
         raise ConvergenceError("FEM layered line contact", sol.iterations, np.inf, s.tol,
@@ -252,7 +252,7 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
 
 
 def extrapolate(levels: list, quantity: str, resolution: str | None = None) -> Extrapolation:
-    """Richardson over the levels (:func:`femcheck.fem.convergence.richardson`). For an edge quantity,
+    """Richardson over the levels (:func:`femcheck.solvers.convergence.richardson`). For an edge quantity,
     ``resolution`` names the levels' attribute holding the node interval of a pinned edge: if any of the last
     three levels is pinned, the sequence is a staircase, not a converging series, so no order is claimed, the
     value is the finest level's and the error estimate is at least the finest edge interval (never the

@@ -6,12 +6,12 @@ g0 = R - sqrt(R^2 - r^2); frictionless, small strain, load control (the approach
 the force equal ``load.normal``). The scene is axisymmetric, so the model is a quarter block with symmetry
 planes x = 0 and y = 0, clamped at the bottom.
 
-Mesh (:func:`femcheck.fem.mesh_layered.coated_block_quarter`): the top face is meshed by Gmsh, refined over the
+Mesh (:func:`femcheck.meshes.coated.coated_block_quarter`): the top face is meshed by Gmsh, refined over the
 candidate zone; the layer is that surface mesh extruded through the thickness in element layers (so a layer
 of t/a = 0.02 still has 2^k * ``layer_elements`` tetrahedra through it without shrinking its in-plane size),
 the substrate below is meshed unstructured (HXT) on the shared interface. P1 tetrahedra, each region with its
 own constants (matrices assembled per region and added), pyamg smoothed-aggregation preconditioned CG with
-the rigid-body modes, and the primal-dual active set of :mod:`femcheck.fem.rigid_contact`.
+the rigid-body modes, and the primal-dual active set of :mod:`femcheck.solvers.rigid_indenter`.
 
 Limits (stated, not hidden): P1 tetrahedra only, so nu <= 0.45 in both materials (locking above; the 2D model
 :mod:`femcheck.fem.layered_line` has the mixed form for nu -> 0.5), and a stiff thin layer bending over a soft
@@ -39,13 +39,13 @@ from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
-from .convergence import Extrapolation
-from .elasticity3d import Solid, elasticity_solver
+from ..solvers.convergence import Extrapolation
+from ..solvers.elasticity3d import Solid, elasticity_solver
 from .layered_line import contact_edge_power, materials_of
 from .layered_line import extrapolate as extrapolate_line
-from .mesh_layered import LAYER, SUBSTRATE, LayeredTetMesh, LayerSizing, coated_block_quarter
+from ..meshes.coated import LAYER, SUBSTRATE, LayeredTetMesh, LayerSizing, coated_block_quarter
 from .quarter_block import tributary_areas
-from .rigid_contact import active_set
+from ..solvers.rigid_indenter import active_set
 
 # P1 tetrahedra lock as nu -> 1/2 (elasticity.py measured the 2D displacement form drifting above 0.45).
 NU_MAX_P1 = 0.45

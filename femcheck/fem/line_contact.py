@@ -9,10 +9,10 @@ import numpy as np
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
 from ..qoi import contact_edge
-from . import contact
-from .convergence import Extrapolation, richardson
-from .elasticity import CondensedBody, boundary_dofs, make_body
-from .mesh2d import MeshSpec, TriMesh, block_half, cylinder_half
+from ..solvers import frictionless
+from ..solvers.convergence import Extrapolation, richardson
+from ..solvers.elasticity2d import CondensedBody, boundary_dofs, make_body
+from ..meshes.plane import MeshSpec, TriMesh, block_half, cylinder_half
 
 
 @dataclass
@@ -117,14 +117,14 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
         n_el += cmesh.triangles.shape[1]
 
     w = _tributary_weights(blk, dofs_b, on_contact_b)
-    sys = contact.CondensedContact(g0, c, W, 0.5 * load_per_length)   # half model carries half the load
+    sys = frictionless.CondensedContact(g0, c, W, 0.5 * load_per_length)   # half model carries half the load
     active0 = x <= a_ref
     if s.method == "active_set":
-        sol = contact.active_set(sys, active0, tol=s.tol)
+        sol = frictionless.active_set(sys, active0, tol=s.tol)
     elif s.method == "penalty":
         e_ref = 1.0 / (block.compliance + cylinder.compliance)
         kappa = s.penalty_factor * e_ref * w / h
-        sol = contact.penalty(sys, kappa, active0, tol=s.tol)
+        sol = frictionless.penalty(sys, kappa, active0, tol=s.tol)
     else:
         raise InputError("numerics.fem_method", f"'{s.method}' unknown; allowed: active_set, penalty")
     p = sol.lam / w

@@ -26,9 +26,9 @@ from ..geometry import profiles
 from ..materials import Elastic, effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
-from .convergence import Extrapolation, richardson
+from ..solvers.convergence import Extrapolation, richardson
 from . import export
-from .mesh3d import BlockSpec, TetMesh
+from ..meshes.block import BlockSpec, TetMesh
 from .quarter_block import solve_quarter
 
 Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]

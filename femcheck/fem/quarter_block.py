@@ -2,7 +2,7 @@
 
 Builds (or reads from the mesh cache) the Gmsh quarter block, assembles P1 elasticity, clamps the bottom,
 puts the symmetry planes x = 0 and y = 0 on rollers, sets up one AMG hierarchy, and solves the contact with
-the primal-dual active set of :mod:`femcheck.fem.rigid_contact` under load control. The block stands for the
+the primal-dual active set of :mod:`femcheck.solvers.rigid_indenter` under load control. The block stands for the
 two bodies with their combined modulus (see :mod:`femcheck.fem.point_contact`).
 """
 from __future__ import annotations
@@ -14,9 +14,9 @@ from typing import Callable
 import numpy as np
 
 from ..materials import Elastic
-from .elasticity3d import elasticity_solver, make_solid
-from .mesh3d import BlockSpec, TetMesh, cached_block_quarter
-from .rigid_contact import active_set, penalty
+from ..solvers.elasticity3d import elasticity_solver, make_solid
+from ..meshes.block import BlockSpec, TetMesh, cached_block_quarter
+from ..solvers.rigid_indenter import active_set, penalty
 
 Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]
 Region = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -65,7 +65,7 @@ def solve_quarter(spec: BlockSpec, gap: Gap, block: Elastic, quarter_force: floa
     the starting active set; ``rim``: candidates that must stay open (contact there means the candidate zone
     is too small, raised as an error rather than a truncated answer). ``method``: "active_set" or "penalty"
     (kappa_i = penalty_factor * E' w_i / h, E' = E/(1 - nu^2), w_i the tributary area, h the contact element
-    size); ``solver``: "auto", "direct" or "amg" (:func:`femcheck.fem.elasticity3d.elasticity_solver`)."""
+    size); ``solver``: "auto", "direct" or "amg" (:func:`femcheck.solvers.elasticity3d.elasticity_solver`)."""
     t0 = time.perf_counter()
     times = {}
     mesh = cached_block_quarter(spec)

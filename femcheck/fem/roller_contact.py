@@ -23,8 +23,8 @@ from ..errors import InputError
 from ..geometry import profiles
 from ..result import ModelResult
 from . import export
-from .convergence import richardson
-from .mesh3d import BlockSpec
+from ..solvers.convergence import richardson
+from ..meshes.block import BlockSpec
 from .point_contact import _body, equivalent_pair
 from .quarter_block import QuarterContact, solve_quarter
 

@@ -1,9 +1,9 @@
 """Conformal FE sub-model of seed 000's spherical roller bearing (Blanco-Lorenzo et al. 2022, Table 1): the real
 barrel-roller segment pressed on the real inner and outer raceway segments, both meshed and elastic,
-frictionless node-to-surface contact (:mod:`femcheck.fem.two_body`), P1 tetrahedra, load control.
+frictionless node-to-surface contact (:mod:`femcheck.solvers.two_body`), P1 tetrahedra, load control.
 
 Geometry, in the local frame of each contact (origin at the nominal contact point, z the contact normal into the
-roller, x rolling, y along the roller axis; builders in :mod:`femcheck.fem.mesh_srb`):
+roller, x rolling, y along the roller axis; builders in :mod:`femcheck.meshes.srb_segments`):
  - roller: crown arc z = R - sqrt(R^2 - y^2) (crown radius R) revolved about its axis, the line z = D/2; a 90 deg
    sector x >= 0, |y| <= segment * b_H, driven rigidly (u = (0, 0, -delta)) on its axial plane z = D/2;
  - raceway: the groove circle of radius r_I (r_E) centred at (0, 0, r_I) revolved about the bearing axis, which
@@ -36,9 +36,9 @@ from ..materials import Elastic, effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
 from ..scene import Key
-from .convergence import richardson
-from .mesh_srb import RingSegmentSpec, RollerSegmentSpec, ring_segment, roller_segment
-from .two_body import ContactBody, solve_two_body
+from ..solvers.convergence import richardson
+from ..meshes.srb_segments import RingSegmentSpec, RollerSegmentSpec, ring_segment, roller_segment
+from ..solvers.two_body import ContactBody, solve_two_body
 
 CONTACTS = ("inner", "outer")
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y")

@@ -100,9 +100,9 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
-            "code": ("fem/layered_line.py", "fem/layered_point.py", "fem/mesh_layered.py", "fem/elasticity.py",
-                     "fem/contact.py", "fem/elasticity3d.py", "fem/rigid_contact.py", "fem/quarter_block.py",
-                     "fem/mesh2d.py", "fem/mesh3d.py", "fem/convergence.py", "analytic/thin_layer.py",
+            "code": ("fem/layered_line.py", "fem/layered_point.py", "meshes/coated.py", "solvers/elasticity2d.py",
+                     "solvers/frictionless.py", "solvers/elasticity3d.py", "solvers/rigid_indenter.py", "fem/quarter_block.py",
+                     "meshes/plane.py", "meshes/block.py", "solvers/convergence.py", "analytic/thin_layer.py",
                      "analytic/hertz.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }

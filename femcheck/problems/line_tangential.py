@@ -79,8 +79,8 @@ REQUIRED = ("geometry.radius", "load.per_length", "materials.block.E", "material
 # re-solved only when its inputs or the FE code below change.
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "friction.", "kinematics.xi", "numerics.fem_"),
-            "code": ("fem/friction_line.py", "fem/friction.py", "fem/mesh2d_full.py", "fem/mesh2d.py",
-                     "fem/elasticity.py", "fem/convergence.py", "qoi.py", "materials.py", "result.py"),
+            "code": ("fem/friction_line.py", "solvers/coulomb.py", "meshes/plane_full.py", "meshes/plane.py",
+                     "solvers/elasticity2d.py", "solvers/convergence.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }
 

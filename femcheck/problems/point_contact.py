@@ -92,8 +92,8 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-            "code": ("fem/point_contact.py", "fem/quarter_block.py", "fem/mesh3d.py", "fem/mesh2d.py",
-                     "fem/elasticity3d.py", "fem/rigid_contact.py", "fem/convergence.py", "fem/export.py",
+            "code": ("fem/point_contact.py", "fem/quarter_block.py", "meshes/block.py", "meshes/plane.py",
+                     "solvers/elasticity3d.py", "solvers/rigid_indenter.py", "solvers/convergence.py", "fem/export.py",
                      "analytic/hertz.py", "geometry/profiles.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }

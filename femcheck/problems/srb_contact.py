@@ -55,8 +55,8 @@ DEPENDS = {"fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_
                    "code": point_contact.DEPENDS["fem"]["code"] + ("geometry/srb.py",),
                    "reference": True},
            "fem_conformal": {"params": ("geometry.", "load.", "materials.", "numerics.conformal_"),
-                             "code": ("fem/srb_conformal.py", "fem/two_body.py", "fem/mesh_srb.py",
-                                      "fem/elasticity3d.py", "fem/convergence.py", "geometry/srb.py",
+                             "code": ("fem/srb_conformal.py", "solvers/two_body.py", "meshes/srb_segments.py",
+                                      "solvers/elasticity3d.py", "solvers/convergence.py", "geometry/srb.py",
                                       "analytic/hertz.py", "qoi.py", "materials.py", "result.py"),
                              "reference": True}}
 

@@ -502,8 +502,8 @@ def ball_on_block(radius: float, ball: Elastic, block: Elastic, load: float, h_o
     from ..analytic import hertz
     from ..materials import effective_modulus
     from ..qoi import ellipse_fit
-    from .mesh3d import BlockSpec
-    from .mesh_srb import BallSpec, ball_segment, block_body
+    from ..meshes.block import BlockSpec
+    from ..meshes.srb_segments import BallSpec, ball_segment, block_body
 
     h = hertz.point_contact(load, radius, effective_modulus(ball, block))
     a = h.semi_axis_x

@@ -2,7 +2,7 @@
 roller / raceway segments of seed 000's spherical roller bearing (Blanco-Lorenzo et al. 2022, Table 1).
 
 Every body is returned as a :class:`BodyMesh`: linear tetrahedra, the triangles of its *contact face* (``top``,
-so that the P1 helpers written for :class:`femcheck.fem.mesh3d.TetMesh` apply) and named node sets of the
+so that the P1 helpers written for :class:`femcheck.meshes.block.TetMesh` apply) and named node sets of the
 faces that carry boundary conditions (symmetry planes, clamped or driven faces). Lengths in m.
 
 Local frame of a contact: origin at the nominal contact point, z along the contact normal pointing into the
@@ -25,8 +25,8 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from .mesh2d import _Gmsh
-from .mesh3d import BlockSpec, background_size, cached_block_quarter, drop_unused_nodes, mesh_cache_dir, node_table
+from .plane import _Gmsh
+from .block import BlockSpec, background_size, cached_block_quarter, drop_unused_nodes, mesh_cache_dir, node_table
 
 
 @dataclass
@@ -138,7 +138,7 @@ def ball_segment(spec: BallSpec) -> BodyMesh:
 
 
 def block_body(spec: BlockSpec) -> BodyMesh:
-    """The quarter block of :func:`femcheck.fem.mesh3d.block_quarter` ([0, Lx] x [0, Ly] x [-H, 0], contact face
+    """The quarter block of :func:`femcheck.meshes.block.block_quarter` ([0, Lx] x [0, Ly] x [-H, 0], contact face
     z = 0) with its faces x0, y0 and bottom as node sets."""
     m = cached_block_quarter(spec)
     P, tiny = m.points, 1e-9 * max(spec.length_x, spec.depth)

@@ -20,8 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .mesh2d import TriMesh, _Gmsh
-from .mesh3d import TetMesh, background_size, drop_unused_nodes, node_table
+from .plane import TriMesh, _Gmsh
+from .block import TetMesh, background_size, drop_unused_nodes, node_table
 
 LAYER, SUBSTRATE = 0, 1
 

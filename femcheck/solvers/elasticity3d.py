@@ -24,7 +24,7 @@ from skfem.models.elasticity import linear_elasticity
 
 from ..errors import ConvergenceError
 from ..materials import Elastic
-from .mesh3d import TetMesh
+from ..meshes.block import TetMesh
 
 _ELEMENTS = {1: (ElementTetP1, 1), 2: (ElementTetP2, 2)}     # element, quadrature order (exact for K)
 

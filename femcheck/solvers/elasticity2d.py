@@ -12,7 +12,7 @@ from skfem.models.elasticity import linear_elasticity
 
 from ..errors import ConvergenceError
 from ..materials import Elastic
-from .mesh2d import TriMesh
+from ..meshes.plane import TriMesh
 
 _ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from .mesh2d import _Gmsh
+from .plane import _Gmsh
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,5 @@
 """Full (non-symmetric) 2D meshes for frictional line contact, built by mirroring the half meshes of
-:mod:`femcheck.fem.mesh2d` about x = 0 and merging the nodes on the symmetry line.
+:mod:`femcheck.meshes.plane` about x = 0 and merging the nodes on the symmetry line.
 
 A tangential load makes the contact unsymmetric (Cattaneo's stick zone stays centred but the traction is
 antisymmetric in the mirror sense; Carter's adhesion zone sits at the leading edge), so the frictional models
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .mesh2d import MeshSpec, TriMesh, block_half, cylinder_half
+from .plane import MeshSpec, TriMesh, block_half, cylinder_half
 
 
 def mirror_merge(half: TriMesh, tol: float) -> TriMesh:
