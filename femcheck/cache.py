@@ -1,5 +1,6 @@
 """Result cache for expensive models (FEM), keyed by a hash of everything that determines the result:
-the scene kind, the model, the parameters it depends on, and the source code of the modules it runs.
+the scene kind, the model, the parameters it depends on, and the source code of the modules it runs (found from
+the imports, :mod:`femcheck.provenance`) with the numerical libraries' versions.
 
 Location: ``$FEMCHECK_CACHE`` or ``~/.cache/femcheck``. Entries are single ``.npz`` files written atomically.
 """
@@ -14,31 +15,20 @@ from typing import Any
 
 import numpy as np
 
+from . import provenance
 from .result import ModelResult, _jsonable
-
-PACKAGE = Path(__file__).parent
-
 
 def cache_dir() -> Path:
     return Path(os.environ.get("FEMCHECK_CACHE", Path.home() / ".cache" / "femcheck"))
 
 
-def code_digest(paths: tuple[str, ...]) -> str:
-    """Hash of the package source files (relative to the package; directories mean their *.py files)."""
-    h = hashlib.sha256()
-    for rel in sorted(paths):
-        p = PACKAGE / rel
-        files = sorted(p.rglob("*.py")) if p.is_dir() else [p]
-        for f in files:
-            h.update(str(f.relative_to(PACKAGE)).encode())
-            h.update(f.read_bytes())
-    return h.hexdigest()
-
-
-def key(kind: str, model: str, params: dict[str, Any], prefixes: tuple[str, ...], code: tuple[str, ...]) -> str:
+def key(kind: str, model: str, params: dict[str, Any], prefixes: tuple[str, ...], modules: tuple[str, ...]) -> str:
+    """Content key of a model result: the kind, the model, the parameters under ``prefixes`` and
+    :func:`femcheck.provenance.code_digest` of ``modules`` (the source of everything they import, transitively,
+    and the numerical libraries' versions)."""
     relevant = {k: v for k, v in sorted(params.items()) if k.startswith(prefixes)}
-    blob = json.dumps({"kind": kind, "model": model, "params": _jsonable(relevant), "code": code_digest(code)},
-                      sort_keys=True)
+    blob = json.dumps({"kind": kind, "model": model, "params": _jsonable(relevant),
+                       "code": provenance.code_digest(modules)}, sort_keys=True)
     return hashlib.sha256(blob.encode()).hexdigest()[:32]
 
 

@@ -93,3 +93,19 @@ def _jsonable(obj: Any) -> Any:
     if isinstance(obj, np.bool_):
         return bool(obj)
     return obj
+
+
+@dataclass
+class StressCase:
+    """One case of a stability sweep (:mod:`femcheck.stability`): the overrides it applies and, after the run,
+    its status (ok | failed | refused | inaccurate), per-model summaries and the problems found."""
+
+    label: str
+    overrides: dict[str, Any]
+    status: str = "pending"          # ok | failed | refused | inaccurate
+    models: dict[str, dict] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"label": self.label, "overrides": self.overrides, "status": self.status,
+                "problems": self.problems, "models": self.models}

@@ -9,6 +9,7 @@ from . import cache, references
 from .checks import physical_violations
 from .compare import compare
 from .errors import ConvergenceError, InputError
+from .meshes.cache import rebuilding
 from .problems import problem
 from .result import ModelResult, RunResult
 from .scene import Scene, load_scene
@@ -27,6 +28,19 @@ def _store_reference(scene: Scene, name: str, key: str, res: ModelResult, dep: d
     references.store(scene.kind, name, key, res, scene.name, relevant)
 
 
+def model_modules(scene: Scene, name: str) -> tuple[str, ...]:
+    """The modules whose source (with everything they import) determines model ``name`` of ``scene``'s kind:
+    the kind's adapter and the module defining the model function."""
+    prob = problem(scene.kind)
+    return tuple(sorted({prob.__name__, prob.MODELS[name].__module__}))
+
+
+def model_key(scene: Scene, name: str) -> str:
+    """Cache / reference key of model ``name`` (declared in the kind's DEPENDS) for ``scene``."""
+    dep = problem(scene.kind).DEPENDS[name]
+    return cache.key(scene.kind, name, scene.params, dep["params"], model_modules(scene, name))
+
+
 def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = False,
               progress: Progress | None = None, store_references: bool = False) -> ModelResult:
     """Run one model; failures become ``status='failed'`` with the reason, never an exception (bad input
@@ -38,7 +52,7 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
     k = None
     is_reference = bool(dep and dep.get("reference"))
     if dep is not None and use_cache:
-        k = cache.key(scene.kind, name, scene.params, dep["params"], dep["code"])
+        k = model_key(scene, name)
         if not rebuild and is_reference and (ref := references.load(scene.kind, name, k)) is not None:
             return ref
         if not rebuild and (hit := cache.load(k)) is not None:
@@ -47,7 +61,8 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
             return hit
     t0 = time.perf_counter()
     try:
-        res = prob.MODELS[name](scene, progress)
+        with rebuilding(rebuild):                   # --rebuild meshes too, not only the solve
+            res = prob.MODELS[name](scene, progress)
     except InputError:
         raise
     except ConvergenceError as err:

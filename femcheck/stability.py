@@ -4,27 +4,14 @@ the scene's tolerance against its first reference model (quantities: the kind's 
 p_max and half_width). Nothing is dropped silently."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import InputError
 from .executor import map_cases
 from .problems import problem
 from .runner import run
+from .result import StressCase
 from .scene import Scene
-
-
-@dataclass
-class StressCase:
-    label: str
-    overrides: dict[str, Any]
-    status: str = "pending"          # ok | failed | refused | inaccurate
-    models: dict[str, dict] = field(default_factory=dict)
-    problems: list[str] = field(default_factory=list)
-
-    def to_json(self) -> dict[str, Any]:
-        return {"label": self.label, "overrides": self.overrides, "status": self.status,
-                "problems": self.problems, "models": self.models}
 
 
 def _run_case(args: tuple[Scene, StressCase]) -> StressCase:

@@ -3,7 +3,8 @@ active set against Hertz, and the stored certified reference of the shipped hert
 import numpy as np
 import pytest
 
-from femcheck import cache, references
+from femcheck import references
+from femcheck.runner import model_key
 from femcheck.analytic.hertz import point_contact
 from femcheck.errors import InputError
 from femcheck.solvers.elasticity3d import AMGElasticity, make_solid, rigid_body_modes
@@ -96,8 +97,7 @@ def test_shipped_hertz_point_reference_is_current_and_certified():
     # The stored reference must match the current FEM code and inputs (else suites would solve again): if
     # this fails after a change to the FEM code, regenerate it with `femcheck run hertz-point --rebuild`.
     sc = load_scene("hertz-point")
-    dep = problem(sc.kind).DEPENDS["fem"]
-    key = cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"])
+    key = model_key(sc, "fem")
     ref = references.load(sc.kind, "fem", key)
     assert ref is not None, "references/ has no entry for the current FEM code; run femcheck run hertz-point"
     hz = point_contact(sc["load.normal"], sc["geometry.radius"], 210e9 / (2 * (1 - 0.3**2)))
@@ -168,8 +168,7 @@ def test_fem_roller_refuses_tilt():
 
 def test_shipped_roller_reference_is_current_and_agrees_with_bem(femcheck_run):
     sc = load_scene("roller-finite")
-    dep = problem(sc.kind).DEPENDS["fem"]
-    ref = references.load(sc.kind, "fem", cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"]))
+    ref = references.load(sc.kind, "fem", model_key(sc, "fem"))
     assert ref is not None, "references/ has no roller-finite entry for the current FEM code; run femcheck run roller-finite"
     bem = femcheck_run("roller-finite", models=["bem"]).models["bem"]
     # issue 4: centre pressure within 3 % of the BEM, edge-peak position within one BEM element

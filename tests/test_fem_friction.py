@@ -190,14 +190,12 @@ def test_active_set_reports_non_convergence(pairs):
 def test_shipped_friction_references_are_current_and_match_the_closed_forms(scene, quantities):
     # The stored FE references must match the current FE code (else suites would re-solve them): if this fails
     # after a change to the FE code, regenerate with `femcheck run carter-2d` / `femcheck run cattaneo-2d`.
-    from femcheck import cache, references
-    from femcheck.problems import problem
-    from femcheck.runner import run
+    from femcheck import references
+    from femcheck.runner import run, model_key
     from femcheck.scene import load_scene
 
     sc = load_scene(scene)
-    dep = problem(sc.kind).DEPENDS["fem"]
-    ref = references.load(sc.kind, "fem", cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"]))
+    ref = references.load(sc.kind, "fem", model_key(sc, "fem"))
     assert ref is not None, f"references/ has no {scene} entry for the current FE code; run femcheck run {scene}"
     closed = run(sc, models=["analytic"]).models["analytic"].quantities
     finest_h = ref.stats["levels"][-1]["h"]

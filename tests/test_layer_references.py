@@ -3,17 +3,15 @@ where issue 5 says they must (layered FFT within 3 % of the FE reference; thin l
 base at h/a <= 0.1; the thin-layer formula is not valid for the seed-001 coatings on steel)."""
 import pytest
 
-from femcheck import cache, references
+from femcheck import references
 from femcheck.errors import InputError
-from femcheck.problems import problem
-from femcheck.runner import run
+from femcheck.runner import run, model_key
 from femcheck.scene import load_scene
 
 
 def _stored(name):
     sc = load_scene(name)
-    dep = problem(sc.kind).DEPENDS["fem"]
-    ref = references.load(sc.kind, "fem", cache.key(sc.kind, "fem", sc.params, dep["params"], dep["code"]))
+    ref = references.load(sc.kind, "fem", model_key(sc, "fem"))
     assert ref is not None, f"references/ has no {name} entry for the current FE code; run femcheck run {name}"
     return sc, ref
 

@@ -3,65 +3,7 @@ functions count too: a cycle hidden in a function is still a cycle), and the mes
 in their own folders."""
 from __future__ import annotations
 
-import ast
-from pathlib import Path
-
-import femcheck
-
-PACKAGE = Path(femcheck.__file__).parent
-
-
-def _module_name(path: Path) -> str:
-    rel = path.relative_to(PACKAGE.parent).with_suffix("")
-    parts = list(rel.parts)
-    if parts[-1] == "__init__":
-        parts.pop()
-    return ".".join(parts)
-
-
-def import_graph() -> dict[str, set[str]]:
-    """Edges module -> femcheck modules it imports (absolute or relative, at any depth of the file)."""
-    modules = {_module_name(p): p for p in PACKAGE.rglob("*.py")}
-    graph: dict[str, set[str]] = {m: set() for m in modules}
-    for name, path in modules.items():
-        is_pkg = path.name == "__init__.py"
-        package = name if is_pkg else name.rpartition(".")[0]
-        for node in ast.walk(ast.parse(path.read_text())):
-            targets: list[str] = []
-            if isinstance(node, ast.Import):
-                targets = [a.name for a in node.names]
-            elif isinstance(node, ast.ImportFrom):
-                base = node.module or ""
-                if node.level:
-                    anchor = package.split(".")[: len(package.split(".")) - (node.level - 1)]
-                    base = ".".join(anchor + ([base] if base else []))
-                targets = [base] + [f"{base}.{a.name}" for a in node.names]
-            for t in targets:
-                if t in modules and t != name and t != package:
-                    graph[name].add(t)
-    return graph
-
-
-def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
-    colour: dict[str, int] = {}
-    stack: list[str] = []
-
-    def visit(n: str) -> list[str] | None:
-        colour[n] = 1
-        stack.append(n)
-        for m in sorted(graph[n]):
-            if colour.get(m) == 1:
-                return stack[stack.index(m):] + [m]
-            if m not in colour and (c := visit(m)):
-                return c
-        stack.pop()
-        colour[n] = 2
-        return None
-
-    for n in sorted(graph):
-        if n not in colour and (c := visit(n)):
-            return c
-    return None
+from femcheck.provenance import PACKAGE, find_cycle, import_graph
 
 
 def test_cycle_finder_sees_a_cycle():

@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from femcheck import cache, references
+from femcheck import references
+from femcheck.runner import model_key
 from femcheck.analytic.hertz import elliptic_contact
-from femcheck.problems import problem
 from femcheck.problems.srb_contact import radii
 from femcheck.scene import load_scene
 
@@ -44,8 +44,7 @@ def test_groove_tighter_than_the_crown_is_refused():
 def test_shipped_srb_reference_is_current_and_within_5_percent_of_hertz(model):
     # fem: equivalent paraboloid on a flat block; fem_conformal: roller and ring segments meshed, two bodies
     sc = load_scene("srb-normal")
-    dep = problem(sc.kind).DEPENDS[model]
-    ref = references.load(sc.kind, model, cache.key(sc.kind, model, sc.params, dep["params"], dep["code"]))
+    ref = references.load(sc.kind, model, model_key(sc, model))
     assert ref is not None, f"references/ has no srb-normal {model} entry for the current code; run femcheck run srb-normal"
     e_star = 207e9 / (2 * (1 - 0.09))
     for c, (rx, ry) in radii(sc.params).items():

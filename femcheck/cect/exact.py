@@ -44,7 +44,7 @@ from ..bem.convolution import DCFFT
 from ..bem.halfspace import Grid, half_space_operator, half_space_preconditioner
 from ..bem.polonsky_keer import polonsky_keer
 from ..errors import ConvergenceError, InputError
-from .coulomb import TangentialResult, coulomb_residual, nonmonotone_step, project_disc, projection_derivative
+from .coulomb import TangentialResult, coulomb_residual, nonmonotone_step, projection_derivative
 from .influence import CombinedConstants, influence
 from .tangential_fft import solve_tangential_fft
 

@@ -10,14 +10,13 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import tempfile
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import meshio
 import numpy as np
 
+from .cache import cached
 from .plane import _Gmsh
 
 
@@ -126,29 +125,20 @@ def block_quarter(spec: BlockSpec, threads: int = 1) -> TetMesh:
     return TetMesh(points, tets, tris, spec)
 
 
-def mesh_cache_dir() -> Path:
-    from ..cache import cache_dir
+def _read_block(spec: BlockSpec):
+    def read(path: Path) -> TetMesh:
+        m = meshio.read(path)
+        tets = np.asarray(m.cells_dict["tetra"], dtype=np.int64).T
+        top = np.asarray(m.cells_dict["triangle"], dtype=np.int64).T
+        return TetMesh(np.ascontiguousarray(m.points.T), np.ascontiguousarray(tets), np.ascontiguousarray(top), spec)
+    return read
 
-    return cache_dir() / "meshes"
+
+def _write_block(mesh: TetMesh, path: str) -> None:
+    meshio.write(path, meshio.Mesh(mesh.points.T, [("tetra", mesh.tets.T), ("triangle", mesh.top.T)]))
 
 
 def cached_block_quarter(spec: BlockSpec) -> TetMesh:
-    """:func:`block_quarter`, meshed once per spec: stored as ``<cache>/meshes/<digest>.vtu`` (tetrahedra and
-    the top-face triangles) through meshio and read back on the next call."""
-    path = mesh_cache_dir() / f"block-{spec.digest()}.vtu"
-    if path.is_file():
-        try:
-            m = meshio.read(path)
-            tets = np.asarray(m.cells_dict["tetra"], dtype=np.int64).T
-            top = np.asarray(m.cells_dict["triangle"], dtype=np.int64).T
-            return TetMesh(np.ascontiguousarray(m.points.T), np.ascontiguousarray(tets), np.ascontiguousarray(top),
-                           spec)
-        except (OSError, KeyError, ValueError):
-            pass                                        # a damaged entry is meshed again
-    mesh = block_quarter(spec)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".vtu")
-    os.close(fd)
-    meshio.write(tmp, meshio.Mesh(mesh.points.T, [("tetra", mesh.tets.T), ("triangle", mesh.top.T)]))
-    os.replace(tmp, path)
-    return mesh
+    """:func:`block_quarter`, meshed once per spec and builder code (:mod:`femcheck.meshes.cache`): stored as
+    ``.vtu`` (tetrahedra and the top-face triangles) through meshio and read back on the next call."""
+    return cached("block", spec, __name__, ".vtu", lambda: block_quarter(spec), _read_block(spec), _write_block)

@@ -13,20 +13,18 @@ the inclined bearing axis), so the SRB segments are half models (x >= 0) and the
 
 Element size: ``h_contact`` in the fine zone around the contact patch, growing by ``grading`` per unit distance
 from it up to ``h_max`` (Gmsh MathEval background field; HXT, one thread for reproducible meshes, FEM-NOTES).
-Meshes are cached as ``<cache>/meshes/<kind>-<digest>.npz``.
+Meshes are cached as ``<cache>/meshes/<kind>-<key>.npz`` (:mod:`femcheck.meshes.cache`).
 """
 from __future__ import annotations
 
-import hashlib
-import json
-import os
-import tempfile
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
 from .plane import _Gmsh
-from .block import BlockSpec, background_size, cached_block_quarter, drop_unused_nodes, mesh_cache_dir, node_table
+from .block import BlockSpec, background_size, cached_block_quarter, drop_unused_nodes, node_table
+from .cache import cached
 
 
 @dataclass
@@ -49,29 +47,21 @@ class BodyMesh:
         return m
 
 
-def _digest(kind: str, spec) -> str:
-    return hashlib.sha256(json.dumps({"kind": kind, **asdict(spec)}, sort_keys=True).encode()).hexdigest()[:16]
+def _read_body(path: Path) -> BodyMesh:
+    with np.load(path) as z:
+        faces = {k[5:]: z[k] for k in z.files if k.startswith("face_")}
+        return BodyMesh(z["points"], z["tets"], z["top"], faces)
+
+
+def _write_body(mesh: BodyMesh, path: str) -> None:
+    with open(path, "wb") as fh:
+        np.savez(fh, points=mesh.points, tets=mesh.tets, top=mesh.top,
+                 **{f"face_{k}": v for k, v in mesh.faces.items()})
 
 
 def _cached(kind: str, spec, build) -> BodyMesh:
-    """``build(spec)`` once per spec; stored as npz (atomic rename) and read back afterwards."""
-    path = mesh_cache_dir() / f"{kind}-{_digest(kind, spec)}.npz"
-    if path.is_file():
-        try:
-            with np.load(path) as z:
-                faces = {k[5:]: z[k] for k in z.files if k.startswith("face_")}
-                return BodyMesh(z["points"], z["tets"], z["top"], faces)
-        except (OSError, KeyError, ValueError):
-            pass
-    mesh = build(spec)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npz")
-    os.close(fd)
-    with open(tmp, "wb") as fh:
-        np.savez(fh, points=mesh.points, tets=mesh.tets, top=mesh.top,
-                 **{f"face_{k}": v for k, v in mesh.faces.items()})
-    os.replace(tmp, path)
-    return mesh
+    """``build(spec)`` once per spec and builder code (:mod:`femcheck.meshes.cache`), stored as npz."""
+    return cached(kind, spec, __name__, ".npz", lambda: build(spec), _read_body, _write_body)
 
 
 def _closest_face(model, faces: list[int], point) -> int:

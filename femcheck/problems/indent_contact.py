@@ -164,7 +164,7 @@ def profile_scale(scene: Scene) -> float:
 
 
 def stress_cases(scene: Scene) -> list:
-    from ..stability import StressCase
+    from ..result import StressCase
 
     return [StressCase(f"K={K:g}, D/Phi={S:g}, Phi={P:g}", {"indent.decay": K, "indent.slope": S,
                                                            "indent.diameter": P})

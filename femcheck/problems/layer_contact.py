@@ -100,10 +100,6 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
-            "code": ("fem/layered_line.py", "fem/layered_point.py", "meshes/coated.py", "solvers/elasticity2d.py",
-                     "solvers/frictionless.py", "solvers/elasticity3d.py", "solvers/rigid_indenter.py", "fem/quarter_block.py",
-                     "meshes/plane.py", "meshes/block.py", "solvers/convergence.py", "analytic/thin_layer.py",
-                     "analytic/hertz.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }
 
@@ -446,7 +442,7 @@ def profile_scale(scene: Scene) -> float:
 def stress_cases(scene: Scene) -> list:
     """Very thin (h/a = 1e-3) and very thick (h/a = 100) layers, E1/E2 from 0.01 to 100, nu -> 0.5 in the
     layer and the substrate, an incompressible layer on a rigid base, and their corners."""
-    from ..stability import StressCase
+    from ..result import StressCase
 
     if coating_names(scene.params):
         w = load_value(scene.params)

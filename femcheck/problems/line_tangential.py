@@ -79,8 +79,6 @@ REQUIRED = ("geometry.radius", "load.per_length", "materials.block.E", "material
 # re-solved only when its inputs or the FE code below change.
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "friction.", "kinematics.xi", "numerics.fem_"),
-            "code": ("fem/friction_line.py", "solvers/coulomb.py", "meshes/plane_full.py", "meshes/plane.py",
-                     "solvers/elasticity2d.py", "solvers/convergence.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }
 
@@ -284,7 +282,7 @@ def stress_cases(scene: Scene) -> list:
     Expected "inaccurate" cases (resolution, not instability): Q'/(mu W') <= 1e-3, whose slip zone
     a (1 - sqrt(1 - Q'/(mu W'))) is thinner than one strip, and 0.99 of saturation, whose adhesion zone is
     four strips long."""
-    from ..stability import StressCase
+    from ..result import StressCase
 
     p = scene.params
     shift = problem_type(p) == "shift"

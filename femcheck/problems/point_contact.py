@@ -92,9 +92,6 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-            "code": ("fem/point_contact.py", "fem/quarter_block.py", "meshes/block.py", "meshes/plane.py",
-                     "solvers/elasticity3d.py", "solvers/rigid_indenter.py", "solvers/convergence.py", "fem/export.py",
-                     "analytic/hertz.py", "geometry/profiles.py", "qoi.py", "materials.py", "result.py"),
             "reference": True},
 }
 
@@ -219,7 +216,7 @@ def profile_scale(scene: Scene) -> float:
 
 def stress_cases(scene: Scene) -> list:
     """Ellipticity up to Ry/Rx = 500, Poisson's ratio to 0.4999, load over six decades, rigid bodies."""
-    from ..stability import StressCase
+    from ..result import StressCase
 
     rx, ry = radii(scene.params)
     base = {k: v for k, v in scene.params.items() if k.startswith("geometry.") and k != "geometry.profile"}

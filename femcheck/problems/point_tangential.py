@@ -345,7 +345,7 @@ def stress_cases(scene: Scene) -> list:
     """Extremes: friction 0.01-2, tangential load up to 0.999 mu P (shift) or creepages from 1e-6 to 100 x
     saturation and large spin (rolling), very elongated contacts (Ry/Rx up to 100), nu -> 0.5, a rigid body
     (dissimilar: Panagiotopoulos), loads down to 1e-6 of the scene's."""
-    from ..stability import StressCase
+    from ..result import StressCase
 
     p = scene.params
     # a shift problem keeps Q / (mu P) when mu changes (a fixed Q would just leave the partial-slip range)

@@ -85,9 +85,6 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.radius", "geometry.length", "load.normal")
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-            "code": ("fem/roller_contact.py", "fem/point_contact.py", "fem/quarter_block.py", "meshes/block.py",
-                     "meshes/plane.py", "solvers/elasticity3d.py", "solvers/rigid_indenter.py", "solvers/convergence.py",
-                     "fem/export.py", "analytic/hertz.py", "geometry/profiles.py", "materials.py", "result.py"),
             "reference": True},
 }
 
@@ -230,7 +227,7 @@ def profile_scale(scene: Scene) -> float:
 
 def stress_cases(scene: Scene) -> list:
     """Load over four decades, Poisson's ratio to 0.4999, misalignment, and each crown type."""
-    from ..stability import StressCase
+    from ..result import StressCase
 
     W = scene["load.normal"]
     cases = [StressCase(f"load={W * f:.3g} N", {"load.normal": W * f}) for f in (1e-3, 1e-2, 1e-1, 1.0, 3.0)]

@@ -52,12 +52,8 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal")
 DEPENDS = {"fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-                   "code": point_contact.DEPENDS["fem"]["code"] + ("geometry/srb.py",),
                    "reference": True},
            "fem_conformal": {"params": ("geometry.", "load.", "materials.", "numerics.conformal_"),
-                             "code": ("fem/srb_conformal.py", "solvers/two_body.py", "meshes/srb_segments.py",
-                                      "solvers/elasticity3d.py", "solvers/convergence.py", "geometry/srb.py",
-                                      "analytic/hertz.py", "qoi.py", "materials.py", "result.py"),
                              "reference": True}}
 
 
@@ -148,7 +144,7 @@ def profile_scale(scene: Scene) -> float:
 
 
 def stress_cases(scene: Scene) -> list:
-    from ..stability import StressCase
+    from ..result import StressCase
 
     n = scene["load.normal"]
     return [StressCase(f"load={n * f:.3g} N", {"load.normal": n * f}) for f in (1e-3, 1e-2, 0.1, 1.0)]
