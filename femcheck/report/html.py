@@ -13,7 +13,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from .. import __version__
 from ..result import RunResult
-from . import pictures, plots
+from . import kinds, pictures, plots
 
 
 def _fmt(v: Any) -> str:
@@ -71,7 +71,7 @@ def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float)
                 if name:
                     figs[key] = name
             figs.update(pictures.fem_views(r, tmp, f"{i:02d}-{r.scene}"))
-            scenes.append({"run": r, "figs": figs})
+            scenes.append({"run": r, "figs": figs, "extra": kinds.section(r, tmp, f"{i:02d}-{r.scene}")})
         data = summary(runs, title, elapsed_s)
         (tmp / "summary.json").write_text(json.dumps(data, indent=1))
         html = _env().get_template("index.html.j2").render(title=title, scenes=scenes, summary=data)
