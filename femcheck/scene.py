@@ -156,6 +156,20 @@ def check_body_pair(params: dict[str, Any], bodies: tuple[str, str]) -> None:
         raise InputError(f"materials.{bodies[1]}.rigid", "both bodies rigid: at least one must be elastic")
 
 
+def model_keys(names: tuple[str, ...]) -> dict[str, Key]:
+    """The ``models.*`` keys of a kind whose models are ``names``: ``run`` (what runs), ``references`` (what
+    the others are compared against) and ``contrast`` (models shown for contrast, not expected to be valid in
+    this scene: a candidate model that leaves its tolerance fails the scene, a contrast model is reported as
+    "not valid here" without failing it). Every compared (model, quantity) of a built-in scene carries a
+    tolerance ``tolerances.<model>.<quantity>``; a contrast model's tolerance is the band it is judged by."""
+    return {
+        "models.run": Key("list", "-", "models to run", choices=names),
+        "models.references": Key("list", "-", "models every other model is compared against", choices=names),
+        "models.contrast": Key("list", "-", "models shown as contrasts (not expected to be valid here)",
+                               choices=names),
+    }
+
+
 def tolerance_key(doc: str) -> Key:
     return Key("float", "-", doc, lo=0.0, hi=1.0, hi_closed=True)
 
