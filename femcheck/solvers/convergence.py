@@ -48,3 +48,101 @@ def richardson(h: list[float], q: list[float], min_order: float = 0.5, max_order
             ext = q3 + (q3 - q2) / (r**p - 1.0)
             return Extrapolation(float(ext), p, float(abs(ext - q3)), q3)
     return Extrapolation(q3, None, float(abs(d23)), q3)
+
+
+# Roache's factor of safety on the grid-convergence index when three or more levels show the expected order
+# (Roache 1998 §5.6: 1.25), and when they do not (3.0: a two-level estimate without a verified order).
+SAFETY_CERTIFIED = 1.25
+SAFETY_UNCERTIFIED = 3.0
+
+
+@dataclass
+class Certificate:
+    """Convergence certificate of one quantity over mesh levels (the shared format of every reference's
+    ``stats["certificates"][quantity]``; see :meth:`as_dict`).
+
+    ``value``: the value the reference reports (Richardson-extrapolated when certified, else the finest level);
+    ``finest``: finest-level value; ``order``: observed order of the last three levels (None when they do not
+    converge monotonically); ``error_estimate``: conservative *relative* error of ``value`` (GCI of the finest
+    level, Roache eq. 5.6.1, with the safety factor above); ``certified``: the levels are in the asymptotic range;
+    ``note``: why (or why not), in words a reader can check against the level table.
+    """
+
+    value: float
+    finest: float
+    order: float | None
+    error_estimate: float
+    certified: bool
+    note: str
+
+    def as_dict(self) -> dict:
+        return {"value": self.value, "finest": self.finest, "order": self.order,
+                "error_estimate": self.error_estimate, "certified": self.certified, "note": self.note}
+
+
+def _orders(h: list[float], q: list[float]) -> list[float | None]:
+    """Observed order of every consecutive triple of levels (None where the differences change sign or vanish)."""
+    out: list[float | None] = []
+    for i in range(len(q) - 2):
+        r = h[i + 1] / h[i + 2]
+        d12, d23 = q[i] - q[i + 1], q[i + 1] - q[i + 2]
+        out.append(float(np.log(d12 / d23) / np.log(r)) if d23 != 0 and d12 / d23 > 0 else None)
+    return out
+
+
+def certify(h: list[float], q: list[float], expected_order: float | None = None, order_band: float = 2.0,
+            singular: bool = False) -> Certificate:
+    """Certificate of a quantity computed on levels of mesh size ``h`` (coarse to fine, constant ratio).
+
+    Certified when the last three levels converge monotonically with an observed order p that is consistent:
+    within a factor ``order_band`` of ``expected_order`` (the discretisation's theoretical order, when the caller
+    knows it), else in [0.5, 4] and, with four or more levels, within 25 % of the order of the previous triple.
+    Then ``value`` = Richardson's extrapolation and ``error_estimate`` = 1.25 |value - finest| / |value|.
+    Otherwise ``value`` = finest level and ``error_estimate`` = 3 max(last change) / |finest| (a two-level bound,
+    not an extrapolation), and the note says why. ``singular``: the quantity grows with refinement by nature (a
+    peak at a sharp edge); it is never certified.
+    """
+    h = [float(x) for x in h]
+    q = [float(x) for x in q]
+    if len(h) != len(q) or not h:
+        raise ValueError("certify needs one value per level")
+    finest = q[-1]
+    scale = abs(finest) if finest != 0 else 1.0
+    if singular:
+        change = abs(q[-1] - q[-2]) / scale if len(q) > 1 else float("inf")
+        return Certificate(finest, finest, None, SAFETY_UNCERTIFIED * change, False,
+                           "mesh-dependent by nature (singular at a sharp edge): finest level, not a converged value")
+    if len(q) < 3:
+        change = abs(q[-1] - q[-2]) / scale if len(q) == 2 else float("inf")
+        return Certificate(finest, finest, None, SAFETY_UNCERTIFIED * change, False,
+                           f"{len(q)} level(s): no observed order")
+    ratios = [h[i] / h[i + 1] for i in range(len(h) - 1)]
+    if not np.allclose(ratios, ratios[0], rtol=1e-6):
+        raise ValueError("levels must have a constant refinement ratio")
+    r = ratios[0]
+    orders = _orders(h, q)
+    p = orders[-1]
+    last_change = abs(q[-1] - q[-2]) / scale
+    bound = SAFETY_UNCERTIFIED * max(last_change, abs(q[-2] - q[-3]) / scale)
+    if q[-1] == q[-2] == q[-3]:
+        return Certificate(finest, finest, None, 0.0, False,
+                           "the last three levels are equal: the quantity does not see the mesh (a mesh node?)")
+    if p is None:
+        return Certificate(finest, finest, None, bound, False,
+                           "the last three levels oscillate: not in the asymptotic range")
+    if expected_order is not None:
+        ok = expected_order / order_band <= p <= expected_order * order_band
+        why = f"observed order {p:.2f} {'within' if ok else 'outside'} a factor {order_band:g} of the expected " \
+              f"{expected_order:g}"
+    else:
+        ok = 0.5 <= p <= 4.0
+        why = f"observed order {p:.2f} {'in' if ok else 'outside'} [0.5, 4]"
+        if ok and len(orders) >= 2 and orders[-2] is not None:
+            consistent = abs(orders[-2] - p) <= 0.25 * p
+            ok = consistent
+            why += f", previous triple {orders[-2]:.2f} ({'consistent' if consistent else 'inconsistent'})"
+    if not ok:
+        return Certificate(finest, finest, p, bound, False, why + ": not in the asymptotic range")
+    value = finest + (finest - q[-2]) / (r**p - 1.0)
+    err = SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0)
+    return Certificate(float(value), finest, p, float(err), True, why)

@@ -1,0 +1,54 @@
+"""Convergence certificates (solvers.convergence.certify) on sequences with known behaviour."""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from femcheck.solvers.convergence import certify
+
+
+def _levels(q_exact, c, p, n=3, r=2.0, h0=0.1):
+    h = [h0 / r**i for i in range(n)]
+    return h, [q_exact + c * x**p for x in h]
+
+
+def test_second_order_sequence_is_certified_and_extrapolated_exactly():
+    h, q = _levels(1.0, 5.0, 2.0)
+    c = certify(h, q, expected_order=2.0)
+    assert c.certified and c.order == pytest.approx(2.0, rel=1e-9) and c.value == pytest.approx(1.0, rel=1e-12)
+    assert c.error_estimate == pytest.approx(1.25 * abs(q[-1] - 1.0), rel=1e-9)       # GCI of the finest level
+
+
+def test_slowly_falling_sequence_is_not_certified():
+    # roller-finite's centre pressure (issue 12): -0.75 % and -0.72 % per sqrt(2) level -> order 0.12
+    h = [1.0, 1 / math.sqrt(2), 0.5]
+    q = [1.0, 0.9925, 0.9925 * (1 - 0.0072)]
+    c = certify(h, q)
+    assert not c.certified and c.value == q[-1] and "outside" in c.note and c.order < 0.2
+    assert c.error_estimate >= 3 * 0.0072 * 0.999
+
+
+def test_oscillating_and_flat_sequences_are_not_certified():
+    assert not certify([1, 0.5, 0.25], [1.0, 1.02, 1.01]).certified
+    flat = certify([1, 0.5, 0.25], [2.0, 2.0, 2.0])
+    assert not flat.certified and "mesh node" in flat.note
+
+
+def test_order_far_from_the_expected_one_is_not_certified():
+    h, q = _levels(1.0, 5.0, 1.0)
+    assert certify(h, q).certified                        # first order is plausible without expectation
+    assert not certify(h, q, expected_order=3.0, order_band=1.5).certified
+
+
+def test_inconsistent_orders_over_four_levels_are_not_certified():
+    h = [0.1, 0.05, 0.025, 0.0125]
+    q = [1.2, 1.1, 1.05, 1.04]            # orders 1.0, then 2.3
+    assert not certify(h, q).certified
+    h, q = _levels(1.0, 5.0, 2.0, n=4)
+    assert certify(h, q).certified
+
+
+def test_singular_quantity_is_flagged():
+    c = certify([1, 0.5, 0.25], [9.1e9, 9.4e9, 9.7e9], singular=True)
+    assert not c.certified and "mesh-dependent" in c.note and c.value == 9.7e9
