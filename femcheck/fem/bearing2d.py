@@ -11,8 +11,11 @@ may carry load (the rigid-ring load zone plus two rollers each side), with an a-
 roller is squeezed (rollers are added and the solve repeated if one is). Contact by the primal-dual active set
 (or penalty), :mod:`femcheck.solvers.bearing_contact`.
 
-Mesh levels k = 0..L-1: every size (zone spacing, grading slope, largest element of rings and roller) halves
-per level, from h_c = ``h_contact`` b (b: Hertz half-width of the rigid-ring Q_max) on the coarsest level.
+Mesh levels k = 0..L-1: every size (zone spacing, grading slope, largest element of rings and roller) shrinks
+by ``ratio`` per level, from h_c = ``h_contact`` b (b: Hertz half-width of the rigid-ring Q_max) on the coarsest
+level. Measured with rigid raceways (209 bearing, P2): Q_max is +0.19 % off the exact 2D law at h_c = b/2, -0.031 %
+at b/4 and -0.0075 % at b/8, so b/2 is not yet in the asymptotic range (the contact spans only two elements) and
+the levels start at b/4 (ratio sqrt 2: three levels for the cost of one more halving).
 Quantities per level; certificates (:func:`femcheck.solvers.convergence.certify`) over the levels.
 """
 from __future__ import annotations
@@ -78,11 +81,12 @@ class BearingSection:
 @dataclass(frozen=True)
 class FESettings:
     levels: int = 3
-    h_contact: float = 0.5        # coarsest zone spacing / b
-    zone: float = 3.0             # zone half-length / b
-    grading: float = 1.2          # coarsest size growth per unit distance
+    ratio: float = 2.0**0.5       # refinement ratio between levels
+    h_contact: float = 0.25       # coarsest zone spacing / b
+    zone: float = 2.5             # zone half-length / b (the contact must stay inside)
+    grading: float = 0.6          # coarsest size growth per unit distance
     h_max_ring: float = 0.5       # coarsest largest ring element / ring thickness
-    h_max_roller: float = 0.5     # coarsest largest roller element / roller radius
+    h_max_roller: float = 0.25    # coarsest largest roller element / roller radius
     order: int = 2
     method: str = "active_set"
     penalty_factor: float = 1.0e3
@@ -127,13 +131,13 @@ def _roller(sec: BearingSection, zone: meshes.ZoneSpec, h: float, grading: float
     return roller_compliance(mesh, sec.roller_radius, zone.offsets, sec.roller_material, s.order, h)
 
 
-def _rings(sec: BearingSection, zone: meshes.ZoneSpec, h: float, grading: float, s: FESettings, k: int):
+def _rings(sec: BearingSection, zone: meshes.ZoneSpec, h: float, grading: float, s: FESettings, scale: float):
     if sec.ring_material.rigid:
         return None, None
     out = []
     for race, back, which in ((sec.inner_raceway, sec.bore, "outer"), (sec.outer_raceway, sec.outside, "inner")):
         t = abs(race - back)
-        h_max = s.h_max_ring * t / 2**k
+        h_max = s.h_max_ring * t * scale
         support = np.pi if which == "outer" else sec.housing_half_angle
         ends = () if support >= np.pi else (support, -support)
         spec = meshes.RingSpec(min(race, back), max(race, back), sec.rollers, which, -sec.load_angle, ends)
@@ -190,16 +194,17 @@ def _excluded_room(sec: BearingSection, sol, extra, gaps0, included: list[int], 
 
 def solve_level(sec: BearingSection, b: float, rr, k: int, s: FESettings, keep_fields: bool = False) -> Level:
     t0 = time.perf_counter()
-    h = s.h_contact * b / 2**k
-    elements = 2 * int(round(s.zone / s.h_contact)) * 2**k
-    zone = meshes.ZoneSpec(s.zone * b, elements)
-    grading = s.grading / 2**k
-    roller = _roller(sec, zone, h, grading, s.h_max_roller * sec.roller_radius / 2**k, s)
+    scale = s.ratio**-k
+    h = s.h_contact * b * scale
+    half = max(2, int(round(s.zone / s.h_contact / scale)))
+    zone = meshes.ZoneSpec(half * h, 2 * half)          # spacing exactly h: levels keep a constant ratio
+    grading = s.grading * scale
+    roller = _roller(sec, zone, h, grading, s.h_max_roller * sec.roller_radius * scale, s)
     W_roll = roller
     if s.similarity == "mesh_all":
         W_roll = rollers_meshed(roller.mesh, sec.roller_radius, sec.pitch_radius, sec.angles, zone.offsets,
                                 sec.roller_material, s.order, h)
-    rings = _rings(sec, zone, h, grading, s, k)
+    rings = _rings(sec, zone, h, grading, s, scale)
     t = roller.t
     n = t.size
     z = sec.rollers
@@ -300,3 +305,58 @@ def _fields(sec, sol, rings, included, n, t, lam_in, lam_out, w) -> dict[str, np
             shift = sol.delta[:, None] if name == "inner" else 0.0
             out[f"ring_{name}_{surf}_u"] = u[vd[:, idx]] + shift
     return out
+
+
+# The discrete contact edge (nodes entering and leaving the active set) makes roller loads oscillate from level to
+# level at a few 1e-4 relative (measured, 209 bearing: Q_max +-1.5e-4 with rigid, +-1.7e-4 with elastic rings,
+# h_c = b/4 ... b/11). Below this the levels cannot show an order; a quantity whose last three levels agree within
+# RESOLUTION is converged to within that band and certified with the conservative 3 x (largest change) estimate.
+RESOLUTION = 1e-3
+
+
+def certificate(h: list[float], q: list[float], scale: float | None = None):
+    """:func:`femcheck.solvers.convergence.certify`, plus the resolution band above. ``scale``: the magnitude
+    the changes are measured against (default |finest|; roller loads use Q_max)."""
+    from ..solvers.convergence import Certificate, certify
+
+    cert = certify(h, q)
+    ref = scale if scale is not None else (abs(q[-1]) or 1.0)
+    changes = [abs(q[i + 1] - q[i]) / ref for i in range(len(q) - 3, len(q) - 1)] if len(q) >= 3 else []
+    if cert.certified or not changes or max(changes) > RESOLUTION:
+        if scale is not None and cert.certified:
+            cert.error_estimate = cert.error_estimate * abs(cert.value) / ref
+        return cert
+    err = 3.0 * max(changes)
+    return Certificate(q[-1], q[-1], cert.order, err, True,
+                       f"changes {changes[0]:.1e}, {changes[1]:.1e} over the last three levels are within the "
+                       f"contact-edge resolution {RESOLUTION:g}: converged to within it ({cert.note})")
+
+
+def solve(sec: BearingSection, s: FESettings, progress=None) -> tuple[list[Level], dict]:
+    """Every level; returns the levels and the certificates of q_max, radial_deflection, load_zone_angle,
+    load_zone_parameter and each loaded roller's load (``roller_loads``: all rollers above 5 % of Q_max)."""
+    b, rr = reference_half_width(sec)
+    levels = []
+    for k in range(s.levels):
+        if progress:
+            progress(f"FE level {k + 1}/{s.levels}")
+        levels.append(solve_level(sec, b, rr, k, s, keep_fields=(k == s.levels - 1)))
+    h = [lv.h for lv in levels]
+    certs = {}
+    for name in ("q_max", "radial_deflection", "load_zone_angle", "load_zone_parameter"):
+        certs[name] = certificate(h, [getattr(lv, name) for lv in levels])
+    q_max = levels[-1].q_max
+    per_roller = [certificate(h, [lv.roller_loads[j] for lv in levels], scale=q_max)
+                  for j in range(sec.rollers)]
+    heavy = [j for j in range(sec.rollers) if levels[-1].roller_loads[j] >= 0.05 * q_max]
+    light = [j for j in range(sec.rollers) if j not in heavy]
+    err = max([per_roller[j].error_estimate for j in heavy] +
+              [3.0 * abs(levels[-1].roller_loads[j] - levels[-2].roller_loads[j]) / q_max for j in light
+               if len(levels) > 1])
+    ok = all(per_roller[j].certified for j in heavy) and len(levels) >= 3
+    certs["roller_loads"] = {"value": None, "finest": None, "order": None, "error_estimate": float(err),
+                             "certified": bool(ok),
+                             "note": "every roller above 5 % of Q_max certified; error relative to Q_max" if ok else
+                             "not every loaded roller's load is certified",
+                             "per_roller": [c.as_dict() for c in per_roller], "b": b}
+    return levels, certs
