@@ -87,6 +87,7 @@ class PlaneStrainRoller:
     rx: tuple[float, float]
     e_star: tuple[float, float]
     name: str = "plane_strain"
+    offset: float = 0.0           # added to B: a compliance measured otherwise (FE roller), as c * offset / P
 
     @property
     def c(self) -> float:
@@ -94,7 +95,8 @@ class PlaneStrainRoller:
 
     @property
     def B(self) -> float:
-        return float(sum(np.log(4.0 * np.pi * self.radius**2 * e / r) - 1.0 for r, e in zip(self.rx, self.e_star)))
+        return float(sum(np.log(4.0 * np.pi * self.radius**2 * e / r) - 1.0 for r, e in zip(self.rx, self.e_star))
+                     + self.offset)
 
     @property
     def max_deflection(self) -> float:

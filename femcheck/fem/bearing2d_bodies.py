@@ -114,10 +114,10 @@ def _inertia_relief(body: Body, xy: np.ndarray, dofs: np.ndarray, groups: np.nda
 
 
 def free_body_compliance(body: Body, xy: np.ndarray, dofs: np.ndarray, B: np.ndarray, groups: np.ndarray | None = None,
-                         pins: np.ndarray | None = None) -> np.ndarray:
+                         pins: np.ndarray | None = None, measure: np.ndarray | None = None) -> np.ndarray:
     """B^T P_u K_pin^-1 P_f B for the columns of B (ndof, m): loads made self-equilibrated per group (P_f), solved
     with three pinned DOFs per group (any three that stop the rigid motion: the reactions vanish), rigid part
-    removed (P_u = P_f^T)."""
+    removed (P_u = P_f^T). ``measure`` (ndof, k): read the displacements with these vectors instead of B."""
     Phi, MPhi, inv = _inertia_relief(body, xy, dofs, groups)
     cb = CondensedBody(body, pins)
     F = B - MPhi @ (inv @ (Phi.T @ B))
@@ -125,7 +125,7 @@ def free_body_compliance(body: Body, xy: np.ndarray, dofs: np.ndarray, B: np.nda
     for lo in range(0, F.shape[1], 200):
         U[cb.free, lo:lo + 200] = cb._solve(F[cb.free, lo:lo + 200])
     U = U - Phi @ (inv @ (MPhi.T @ U))
-    return B.T @ U
+    return (B if measure is None else measure).T @ U
 
 
 def _pins(xy: np.ndarray, dofs: np.ndarray, groups: np.ndarray) -> np.ndarray:
