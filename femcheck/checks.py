@@ -9,7 +9,7 @@ LOAD_BALANCE_TOL = 1e-6
 
 
 def physical_violations(res: ModelResult, applied_load: float) -> list[str]:
-    """Non-finite quantities, negative pressures and load imbalance |total_force - W| / W > 1e-6."""
+    """Non-finite quantities, negative pressures or roller loads, and load imbalance |total_force - W| / W > 1e-6."""
     issues = [f"non-finite {k}" for k, v in res.quantities.items() if not np.isfinite(v)]
     p = res.fields.get("pressure")
     if p is not None:
@@ -17,6 +17,12 @@ def physical_violations(res: ModelResult, applied_load: float) -> list[str]:
             issues.append("non-finite pressure field")
         elif p.min() < 0:
             issues.append(f"negative pressure {p.min():.3e} Pa")
+    q = res.fields.get("roller_loads")
+    if q is not None:
+        if not np.all(np.isfinite(q)):
+            issues.append("non-finite roller loads")
+        elif np.min(q) < 0:
+            issues.append(f"negative roller load {np.min(q):.3e} N")
     f = res.quantities.get("total_force")
     if f is not None and np.isfinite(f):
         imbalance = abs(f - applied_load) / applied_load

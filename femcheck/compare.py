@@ -26,6 +26,11 @@ def profile_errors(x: np.ndarray, p: np.ndarray, x_ref: np.ndarray, p_ref: np.nd
             "pressure_profile_max": float(np.abs(a - b).max() / b.max())}
 
 
+def roller_load_errors(loads: np.ndarray, ref_loads: np.ndarray) -> dict[str, float]:
+    """Roller-by-roller difference of two load distributions (same rollers): max_j |Q_j - Q_j,ref| / max Q_ref."""
+    return {"roller_loads_max": float(np.abs(loads - ref_loads).max() / np.abs(ref_loads).max())}
+
+
 def _judge(quantity: str, model: str, ref: str, value: float, ref_value: float, rel: float,
            scene: Scene) -> Comparison:
     tol = scene.get(f"tolerances.{model}.{quantity}")
@@ -63,5 +68,9 @@ def compare(scene: Scene, results: dict[str, ModelResult], scale: float) -> list
             if "pressure" in res.fields and "pressure" in rres.fields:
                 errs = profile_errors(res.fields["x"], res.fields["pressure"], rres.fields["x"],
                                       rres.fields["pressure"], scale)
+                out += [_judge(k, name, ref, v, 0.0, v, scene) for k, v in errs.items()]
+            if "roller_loads" in res.fields and "roller_loads" in rres.fields and \
+                    np.shape(res.fields["roller_loads"]) == np.shape(rres.fields["roller_loads"]):
+                errs = roller_load_errors(res.fields["roller_loads"], rres.fields["roller_loads"])
                 out += [_judge(k, name, ref, v, 0.0, v, scene) for k, v in errs.items()]
     return out

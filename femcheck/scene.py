@@ -20,7 +20,7 @@ from .materials import Elastic
 
 @dataclass(frozen=True)
 class Key:
-    """Schema of one scene key: ``kind`` is float | int | bool | str | list; ``lo``/``hi`` bound numbers
+    """Schema of one scene key: ``kind`` is float | int | bool | str | list | floats; ``lo``/``hi`` bound numbers
     (open bounds unless ``lo_closed``/``hi_closed``); ``choices`` restrict strings or list items."""
 
     kind: str
@@ -73,6 +73,12 @@ class Key:
             if not isinstance(value, str) or (self.choices and value not in self.choices):
                 raise bad
             return value
+        if self.kind == "floats":          # a list of numbers, each range-checked (e.g. a paper's table row)
+            items = [s.strip() for s in value.split(",")] if isinstance(value, str) else value
+            if not isinstance(items, list) or not items:
+                raise bad
+            return [Key("float", self.unit, lo=self.lo, hi=self.hi, lo_closed=self.lo_closed,
+                        hi_closed=self.hi_closed).coerce(name, v) for v in items]
         if self.kind == "list":
             items = [s.strip() for s in value.split(",")] if isinstance(value, str) else value
             if not isinstance(items, list) or not items or not all(isinstance(i, str) and i for i in items):

@@ -24,7 +24,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic.bearing_laws import PlaneStrainRoller
-from ..analytic.bearing_load import rigid_ring
 from ..errors import ConvergenceError
 from ..fem.bearing2d import BearingSection, reference_half_width
 from ..fem.bearing2d_bodies import (_pins, free_body_compliance, node_table, tributary_lengths, zone_nodes)

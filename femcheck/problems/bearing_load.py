@@ -1,0 +1,381 @@
+"""Bearing load distribution (seed 003; spec bearing-load.md): how a radial (and axial) load shares out over the
+rollers of a cylindrical (or, multi-row, tapered) roller bearing.
+
+Models:
+  ``rigid_ring``  discrete rigid-ring theory (Stribeck/Sjövall) with the scene's load-deflection law; ISO/TS 16281
+                  slices (crown, tilt), and for several rows the 5-DOF equilibrium (:mod:`femcheck.analytic`).
+  ``integral``    its Z -> infinity limit with Sjövall's J_r (any law; J_r, J_a reported for the power laws).
+  ``condensed``   seed 003's idea in 2D: FE ring compliances at the contact centres, one roller's compliance,
+                  Hertz-revised widths (:mod:`femcheck.bem.bearing_condensed`).
+  ``fem``         2D plane-strain FE of the section, frictionless contact, load control, geometric similarity,
+                  mesh levels with certificates (:mod:`femcheck.fem.bearing2d`). A stored reference.
+Quantities (SI): ``q_max`` (N), ``radial_deflection`` (m, shaft relative to housing), ``loaded_rollers``,
+``load_zone_angle`` (rad, half-angle), ``load_zone_parameter`` (eps), ``stribeck_factor`` Z Q_max/F_r,
+``total_force`` (N, sum Q_j cos psi_j cos alpha: the equilibrium check), ``rating_life`` (L10r, 1e6 rev, law
+iso16281), ``row_share_<r>`` (%, several rows); field ``roller_loads`` (N) at ``roller_angle`` (rad from the load
+line), compared roller by roller as ``roller_loads_max`` = max_j |Q_j - Q_j,ref| / max Q_ref.
+The 2D models (condensed, fem) use the plane-strain roller law; every approach is relative to a body reference
+(roller centre, tied bore, clamped OD): 2D plane strain has no absolute half-plane approach.
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from ..analytic import bearing_laws as laws
+from ..analytic import iso16281
+from ..analytic.bearing_load import integral_model, load_integrals, rigid_ring as rigid_ring_solve, zone_from_profile
+from ..errors import InputError
+from ..materials import Elastic
+from ..result import ModelResult
+from ..scene import Key, Scene, model_keys, tolerance_key
+
+MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem")
+LAWS = ("power", "palmgren", "iso16281", "plane_strain")
+MAX_PRELOAD = 0.01          # |P_d| / D: beyond, the rollers would overlap the raceways by more than small strain
+ALTERNATIVES: tuple = ()
+
+SCHEMA: dict[str, Key] = {
+    "geometry.inner_raceway_diameter": Key("float", "m", "inner raceway diameter d_i", lo=0.0),
+    "geometry.outer_raceway_diameter": Key("float", "m", "outer raceway diameter d_o", lo=0.0),
+    "geometry.roller_diameter": Key("float", "m", "roller diameter D (mean diameter of a tapered roller)", lo=0.0),
+    "geometry.roller_length": Key("float", "m", "effective roller length l (converts N <-> N/m in 2D)", lo=0.0),
+    "geometry.bore_diameter": Key("float", "m", "inner-ring bore (elastic rings)", lo=0.0),
+    "geometry.outside_diameter": Key("float", "m", "outer-ring outside diameter (elastic rings)", lo=0.0),
+    "bearing.rollers": Key("int", "-", "rollers per row Z", lo=3, hi=200, lo_closed=True, hi_closed=True),
+    "bearing.contact_angle": Key("float", "rad", "contact angle alpha", lo=0.0, hi=1.2, lo_closed=True, hi_closed=True),
+    "bearing.law": Key("str", "-", "roller load-deflection law", choices=LAWS),
+    "bearing.load_exponent": Key("float", "-", "exponent n of the power law", lo=1.0, hi=3.0, lo_closed=True,
+                                 hi_closed=True),
+    "bearing.load_stiffness": Key("float", "N/m^n", "K of the power law (default: ISO/TS 16281 at the nominal "
+                                  "Q_max = 4.08 F_r/Z)", lo=0.0),
+    "bearing.slices": Key("int", "-", "ISO/TS 16281 slices per roller", lo=1, hi=200, lo_closed=True, hi_closed=True),
+    "bearing.crown": Key("str", "-", "roller profile (ISO/TS 16281 logarithmic crown)", choices=("none", "iso")),
+    "bearing.tilt": Key("float", "rad", "misalignment of the inner ring (single row, iso16281)", lo=-0.01, hi=0.01,
+                        lo_closed=True, hi_closed=True),
+    "bearing.rows": Key("int", "-", "rows (iso16281 law)", lo=1, hi=8, lo_closed=True, hi_closed=True),
+    "bearing.row_spacing": Key("float", "m", "distance between neighbouring rows", lo=0.0),
+    "bearing.row_arrangement": Key("str", "-", "contact-angle directions of the rows",
+                                   choices=("alternate", "same")),
+    "bearing.dynamic_load_rating": Key("float", "N", "C_r (default: ISO 281 from the geometry)", lo=0.0),
+    "load.radial": Key("float", "N", "radial load F_r", lo=0.0),
+    "load.axial": Key("float", "N", "axial load F_a", lo=0.0, lo_closed=True),
+    "load.angle": Key("float", "rad", "load line's angle from roller 0 (0: a roller on the load line)", lo=-np.pi,
+                      hi=np.pi, lo_closed=True, hi_closed=True),
+    "load.offset": Key("float", "m", "axial position of the radial load from the bearing middle (several rows)"),
+    "support.housing_half_angle": Key("float", "rad", "outer ring clamped over |theta| <= this about the load "
+                                      "line (pi: full housing)", lo=0.0, hi=np.pi, hi_closed=True),
+    "materials.rollers.E": Key("float", "Pa", "Young's modulus of the rollers", lo=0.0),
+    "materials.rollers.nu": Key("float", "-", "Poisson's ratio of the rollers", lo=-1.0, hi=0.5),
+    "materials.rings.E": Key("float", "Pa", "Young's modulus of the rings", lo=0.0),
+    "materials.rings.nu": Key("float", "-", "Poisson's ratio of the rings", lo=-1.0, hi=0.5),
+    "materials.rings.rigid": Key("bool", "-", "rigid rings (rigid raceways)"),
+    **model_keys(MODEL_NAMES),
+    "numerics.fem_levels": Key("int", "-", "FE mesh levels (>= 3 for certificates)", lo=1, hi=6, lo_closed=True,
+                               hi_closed=True),
+    "numerics.fem_ratio": Key("float", "-", "FE refinement ratio between levels", lo=1.1, hi=2.0, lo_closed=True,
+                              hi_closed=True),
+    "numerics.fem_h_contact": Key("float", "b", "coarsest contact-zone spacing / Hertz half-width", lo=0.01,
+                                  hi=1.0, lo_closed=True, hi_closed=True),
+    "numerics.fem_zone": Key("float", "b", "contact-zone half-length / Hertz half-width", lo=1.2, hi=10.0,
+                             lo_closed=True, hi_closed=True),
+    "numerics.fem_grading": Key("float", "-", "coarsest mesh growth per unit distance", lo=0.05, hi=2.0,
+                                lo_closed=True, hi_closed=True),
+    "numerics.fem_h_max_ring": Key("float", "t", "coarsest largest ring element / ring thickness", lo=0.05, hi=2.0,
+                                   lo_closed=True, hi_closed=True),
+    "numerics.fem_h_max_roller": Key("float", "R", "coarsest largest roller element / roller radius", lo=0.02,
+                                     hi=1.0, lo_closed=True, hi_closed=True),
+    "numerics.fem_order": Key("int", "-", "element order", lo=1, hi=2, lo_closed=True, hi_closed=True),
+    "numerics.fem_method": Key("str", "-", "contact algorithm", choices=("active_set", "penalty")),
+    "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E* w / h)", lo=1.0, hi=1e9, hi_closed=True),
+    "numerics.fem_similarity": Key("str", "-", "rollers: one condensed and rotated, or all meshed as one body",
+                                   choices=("rotate", "mesh_all")),
+    "numerics.condensed_h_contact": Key("float", "b", "condensed model: patch-zone spacing / b_0", lo=0.02, hi=1.0,
+                                        lo_closed=True, hi_closed=True),
+    "numerics.condensed_roller": Key("str", "-", "condensed model: roller compliance",
+                                     choices=("closed_form", "fem")),
+    "paper.row_shares_measured": Key("floats", "%", "seed 003 Table 3: measured row shares", lo=0.0, hi=100.0,
+                                     lo_closed=True, hi_closed=True),
+    "paper.row_shares_gsc": Key("floats", "%", "seed 003 Table 3: GSC-BBEM row shares", lo=0.0, hi=100.0,
+                                lo_closed=True, hi_closed=True),
+    "paper.row_shares_tbbem": Key("floats", "%", "seed 003 Table 3: T-BBEM row shares", lo=0.0, hi=100.0,
+                                  lo_closed=True, hi_closed=True),
+    "tolerances.*.*": tolerance_key("relative tolerance (or band, for a contrast) of model.quantity against the "
+                                    "references"),
+}
+
+DEFAULTS: dict[str, Any] = {
+    "bearing.contact_angle": 0.0,
+    "bearing.law": "plane_strain",
+    "bearing.load_exponent": 10.0 / 9.0,
+    "bearing.slices": 30,
+    "bearing.crown": "none",
+    "bearing.tilt": 0.0,
+    "bearing.rows": 1,
+    "bearing.row_spacing": 0.0,
+    "bearing.row_arrangement": "alternate",
+    "load.axial": 0.0,
+    "load.angle": 0.0,
+    "load.offset": 0.0,
+    "support.housing_half_angle": np.pi,
+    "materials.rings.rigid": False,
+    "models.run": ["rigid_ring", "integral"],
+    "models.references": ["rigid_ring"],
+    "models.contrast": [],
+    "numerics.fem_levels": 3,
+    "numerics.fem_ratio": 2.0**0.5,
+    "numerics.fem_h_contact": 0.25,
+    "numerics.fem_zone": 2.5,
+    "numerics.fem_grading": 0.6,
+    "numerics.fem_h_max_ring": 0.5,
+    "numerics.fem_h_max_roller": 0.25,
+    "numerics.fem_order": 2,
+    "numerics.fem_method": "active_set",
+    "numerics.fem_penalty": 1.0e3,
+    "numerics.fem_similarity": "rotate",
+    "numerics.condensed_h_contact": 0.25,
+    "numerics.condensed_roller": "closed_form",
+}
+REQUIRED = ("geometry.inner_raceway_diameter", "geometry.outer_raceway_diameter", "geometry.roller_diameter",
+            "geometry.roller_length", "bearing.rollers", "load.radial", "materials.rollers.E", "materials.rollers.nu")
+
+DEPENDS = {
+    "fem": {"params": ("geometry.", "bearing.rollers", "load.radial", "load.angle", "materials.", "support.",
+                       "numerics.fem_"), "reference": True},
+    "condensed": {"params": ("geometry.", "bearing.rollers", "load.radial", "load.angle", "materials.", "support.",
+                             "numerics.condensed_")},
+}
+
+
+def clearance(params: dict[str, Any]) -> float:
+    """Diametral clearance P_d = d_o - d_i - 2 D (m; negative: preload)."""
+    return params["geometry.outer_raceway_diameter"] - params["geometry.inner_raceway_diameter"] - \
+        2.0 * params["geometry.roller_diameter"]
+
+
+def section(params: dict[str, Any]):
+    """The 2D section (:class:`femcheck.fem.bearing2d.BearingSection`) of a single-row scene."""
+    from ..fem.bearing2d import BearingSection
+
+    rings = Elastic(params.get("materials.rings.E", 1.0), params.get("materials.rings.nu", 0.0),
+                    params["materials.rings.rigid"])
+    return BearingSection(params["bearing.rollers"], 0.5 * params["geometry.roller_diameter"],
+                          0.5 * params["geometry.inner_raceway_diameter"],
+                          0.5 * params["geometry.outer_raceway_diameter"],
+                          0.5 * params.get("geometry.bore_diameter", 0.0),
+                          0.5 * params.get("geometry.outside_diameter", 0.0),
+                          params["geometry.roller_length"], params["load.radial"], params["load.angle"],
+                          Elastic(params["materials.rollers.E"], params["materials.rollers.nu"]), rings,
+                          params["support.housing_half_angle"])
+
+
+def roller_law(params: dict[str, Any]):
+    """The load-deflection law of one roller (both contacts) named by ``bearing.law``."""
+    law, length = params["bearing.law"], params["geometry.roller_length"]
+    if law == "palmgren":
+        return laws.palmgren(length)
+    if law == "iso16281":
+        return laws.iso16281(length)
+    if law == "plane_strain":
+        return section(params).roller_law()
+    n = params["bearing.load_exponent"]
+    if "bearing.load_stiffness" in params:
+        return laws.PowerLaw(params["bearing.load_stiffness"], n)
+    return laws.power_law_matched(length, n, 4.08 * params["load.radial"] / params["bearing.rollers"])
+
+
+def validate(params: dict[str, Any]) -> None:
+    """Geometry that fits, loads a model can carry, models that apply to the scene."""
+    d_i, d_o, D = (params[f"geometry.{k}"] for k in ("inner_raceway_diameter", "outer_raceway_diameter",
+                                                     "roller_diameter"))
+    pd = clearance(params)
+    if pd < -MAX_PRELOAD * D:
+        raise InputError("geometry.outer_raceway_diameter",
+                         f"{d_o:g} m leaves {0.5 * (d_o - d_i):.4g} m of radial room for rollers of diameter {D:g} m "
+                         f"(clearance {pd:.3g} m); allowed: > {d_i + (2 - MAX_PRELOAD) * D:.6g} m "
+                         f"(d_i + 2 D, preload up to {MAX_PRELOAD:g} D)")
+    z = params["bearing.rollers"]
+    pitch = 0.5 * (d_i + d_o)
+    if z * D >= np.pi * pitch * np.cos(0.0):
+        raise InputError("bearing.rollers", f"{z} rollers of diameter {D:g} m do not fit on the pitch circle "
+                         f"{pitch:g} m; allowed: < {int(np.pi * pitch / D)}")
+    for key, lo, hi in (("geometry.bore_diameter", 0.0, d_i), ("geometry.outside_diameter", d_o, np.inf)):
+        if key in params and not lo < params[key] < hi:
+            raise InputError(key, f"{params[key]:g} m is not allowed; allowed: ({lo:g}, {hi:g}) m")
+    run = set(params["models.run"]) | set(params["models.references"])
+    two_d = run & {"condensed", "fem"}
+    if two_d:
+        if params["bearing.rows"] > 1 or params["bearing.contact_angle"] > 0 or params["load.axial"] > 0:
+            raise InputError("models.run", f"{', '.join(sorted(two_d))}: 2D plane-strain models of a single-row "
+                             "radial bearing (rows 1, contact angle 0, no axial load)")
+        if not params["materials.rings.rigid"]:
+            for key in ("geometry.bore_diameter", "geometry.outside_diameter", "materials.rings.E",
+                        "materials.rings.nu"):
+                if key not in params:
+                    raise InputError(key, "required for elastic rings in the condensed and fem models "
+                                          "(or set materials.rings.rigid = true)")
+    if params["bearing.rows"] > 1 and params["bearing.law"] != "iso16281":
+        raise InputError("bearing.law", "several rows are solved with ISO/TS 16281 slices; allowed: iso16281")
+    if params["load.axial"] > 0 and params["bearing.contact_angle"] == 0:
+        raise InputError("load.axial", "a bearing with contact angle 0 carries no axial load in these models; "
+                         "allowed: 0")
+    if params["bearing.law"] == "plane_strain" or two_d:
+        law = section(params).roller_law()
+        q_lim = float(law.load(0.999 * law.max_deflection))
+        if params["load.radial"] > q_lim:
+            raise InputError("load.radial", f"{params['load.radial']:g} N could put more than the 2D roller law's "
+                             f"range on one roller (contact widths not small against R); allowed: (0, {q_lim:.4g}] N")
+
+
+def _quantities(psi, loads, interference, radial_load, delta_r, z, ca=1.0) -> tuple[dict, dict]:
+    zone, eps = zone_from_profile(psi, interference)
+    q = {"q_max": float(loads.max()), "radial_deflection": float(delta_r),
+         "loaded_rollers": float(np.count_nonzero(loads > 0)), "load_zone_angle": zone,
+         "load_zone_parameter": eps, "stribeck_factor": float(z * loads.max() / radial_load),
+         "total_force": float(np.sum(loads * np.cos(psi)) * ca)}
+    fields = {"roller_angle": np.asarray(psi, float), "roller_loads": np.asarray(loads, float),
+              "roller_interference": np.asarray(interference, float)}
+    return q, fields
+
+
+def _rating(scene: Scene, slice_loads: np.ndarray) -> float:
+    D, length = scene["geometry.roller_diameter"], scene["geometry.roller_length"]
+    dpw = 0.5 * (scene["geometry.inner_raceway_diameter"] + scene["geometry.outer_raceway_diameter"])
+    alpha, rows = scene["bearing.contact_angle"], scene["bearing.rows"]
+    c = scene.get("bearing.dynamic_load_rating") or iso16281.dynamic_load_rating(
+        scene["bearing.rollers"], D, dpw, length, alpha, rows)
+    return iso16281.reference_rating_life(slice_loads, c, D, dpw, alpha, rows)
+
+
+def rigid_ring(scene: Scene, progress=None) -> ModelResult:
+    """Discrete rigid-ring distribution (single row: any law; ISO law: slices; several rows: 5 DOF)."""
+    p = scene.params
+    z, fr, pd = p["bearing.rollers"], p["load.radial"], clearance(p)
+    if p["bearing.law"] == "iso16281":
+        rows_n = p["bearing.rows"]
+        alpha = p["bearing.contact_angle"]
+        zs = (np.arange(rows_n) - 0.5 * (rows_n - 1)) * p["bearing.row_spacing"]
+        signs = [(-1) ** r if p["bearing.row_arrangement"] == "alternate" else 1 for r in range(rows_n)]
+        rows = [iso16281.Row(float(zz), alpha, s) for zz, s in zip(zs, signs)]
+        D = p["geometry.roller_diameter"]
+        sol = iso16281.sliced_equilibrium(rows, z, 0.25 * (p["geometry.inner_raceway_diameter"]
+                                                           + p["geometry.outer_raceway_diameter"]),
+                                          p["geometry.roller_length"], D, pd, p["bearing.slices"], fr,
+                                          p["load.axial"], p["load.offset"], p["load.angle"], p["bearing.tilt"],
+                                          p["bearing.crown"], tapered=alpha > 0)
+        loads = sol.roller_loads.sum(axis=0) if rows_n == 1 else sol.roller_loads
+        u = sol.equilibrium.u
+        flat = sol.roller_loads[0] if rows_n == 1 else sol.roller_loads.max(axis=0)
+        interference = sol.deflection[0].max(axis=1) if rows_n == 1 else sol.deflection.max(axis=(0, 2))
+        q, fields = _quantities(sol.psi, flat, interference, fr, np.hypot(u[0], u[1]), z, np.cos(alpha))
+        q["total_force"] = float(sol.row_radial.sum())
+        stats = {"iterations": sol.equilibrium.iterations, "residual": sol.equilibrium.residual,
+                 "dofs": list(sol.dofs), "displacement": u.tolist(), "slices": p["bearing.slices"]}
+        if rows_n == 1:
+            q["rating_life"] = _rating(scene, sol.slice_loads[0])
+        else:
+            shares = 100.0 * sol.row_radial / sol.row_radial.sum()
+            for r, sh in enumerate(shares):
+                q[f"row_share_{r + 1}"] = float(sh)
+            fields["row_roller_loads"] = loads
+            fields["row_shares"] = shares
+            q.pop("load_zone_angle"), q.pop("load_zone_parameter"), q.pop("stribeck_factor")
+            q["q_max"] = float(loads.max())
+        return ModelResult("rigid_ring", quantities=q, stats=stats, fields=fields)
+    law = roller_law(p)
+    rr = rigid_ring_solve(z, pd, law, fr, p["load.angle"], p["load.axial"], p["bearing.contact_angle"])
+    q, fields = _quantities(rr.psi, rr.loads, rr.deflection, fr, rr.radial_deflection, z,
+                            np.cos(p["bearing.contact_angle"]))
+    q["load_zone_angle"], q["load_zone_parameter"] = rr.load_zone_angle, rr.eps
+    stats = {"iterations": rr.iterations, "residual": rr.residual, "law": getattr(law, "name", p["bearing.law"]),
+             "displacement": rr.displacement.tolist(), "axial_reaction": rr.axial_reaction}
+    return ModelResult("rigid_ring", quantities=q, stats=stats, fields=fields)
+
+
+def integral(scene: Scene, progress=None) -> ModelResult:
+    """Z -> infinity (Sjövall): the continuous distribution, sampled at the roller angles for the profile."""
+    p = scene.params
+    if p["bearing.rows"] > 1:
+        return ModelResult("integral", "skipped", error="the integral model is single-row")
+    law = roller_law(p)
+    z, fr = p["bearing.rollers"], p["load.radial"]
+    m = integral_model(z, clearance(p), law, fr, p["bearing.contact_angle"])
+    psi = 2.0 * np.pi * np.arange(z) / z - p["load.angle"]
+    psi = np.angle(np.exp(1j * psi))
+    q = {"q_max": m.q_max, "radial_deflection": m.radial_deflection, "load_zone_angle": m.load_zone_angle,
+         "load_zone_parameter": m.eps, "stribeck_factor": z * m.q_max / fr}
+    stats = {"J_r": m.j_r, "J_a": m.j_a, "iterations": m.iterations, "residual": 0.0}
+    if isinstance(law, laws.PowerLaw):
+        stats["J_r_sjovall"], stats["J_a_sjovall"] = load_integrals(m.eps, law.exponent)
+    interference = m.radial_deflection * np.cos(psi) - 0.5 * clearance(p)
+    fields = {"roller_angle": psi, "roller_loads": m.load(psi, law), "roller_interference": interference}
+    return ModelResult("integral", quantities=q, stats=stats, fields=fields)
+
+
+def condensed(scene: Scene, progress=None) -> ModelResult:
+    from ..bem.bearing_condensed import CondensedSettings, solve
+
+    p = scene.params
+    s = CondensedSettings(h_contact=p["numerics.condensed_h_contact"], roller=p["numerics.condensed_roller"])
+    sec = section(p)
+    r = solve(sec, s, progress)
+    psi = np.angle(np.exp(1j * sec.angles))
+    q, fields = _quantities(psi, r.loads, r.interference, p["load.radial"], np.hypot(*r.delta), sec.rollers)
+    stats = {"iterations": r.newton_iterations, "width_iterations": r.width_iterations, "residual": r.residual,
+             "b0": r.b0, "n_dofs": r.ring_dofs, "roller": s.roller, "delta": r.delta.tolist()}
+    fields["half_width_inner"], fields["half_width_outer"] = r.widths
+    return ModelResult("condensed", quantities=q, stats=stats, fields=fields)
+
+
+def fem(scene: Scene, progress=None) -> ModelResult:
+    from ..fem import bearing2d as fe
+
+    p = scene.params
+    s = fe.FESettings(levels=p["numerics.fem_levels"], ratio=p["numerics.fem_ratio"],
+                      h_contact=p["numerics.fem_h_contact"], zone=p["numerics.fem_zone"],
+                      grading=p["numerics.fem_grading"], h_max_ring=p["numerics.fem_h_max_ring"],
+                      h_max_roller=p["numerics.fem_h_max_roller"], order=p["numerics.fem_order"],
+                      method=p["numerics.fem_method"], penalty_factor=p["numerics.fem_penalty"],
+                      similarity=p["numerics.fem_similarity"])
+    sec = section(p)
+    levels, certs = fe.solve(sec, s, progress)
+    fine = levels[-1]
+    psi = np.angle(np.exp(1j * sec.angles))
+    q, fields = _quantities(psi, fine.roller_loads, fine.interference, p["load.radial"], fine.radial_deflection,
+                            sec.rollers)
+    q["load_zone_angle"], q["load_zone_parameter"] = fine.load_zone_angle, fine.load_zone_parameter
+    finest = {k: q[k] for k in ("q_max", "radial_deflection", "load_zone_angle", "load_zone_parameter")}
+    as_dict = {k: (v.as_dict() if hasattr(v, "as_dict") else v) for k, v in certs.items()}
+    for k in finest:
+        q[k] = as_dict[k]["value"]
+    q["stribeck_factor"] = sec.rollers * q["q_max"] / p["load.radial"]
+    as_dict["stribeck_factor"] = {**as_dict["q_max"], "value": q["stribeck_factor"],
+                                  "finest": sec.rollers * finest["q_max"] / p["load.radial"]}
+    for k in ("p_max_inner", "p_max_outer", "half_width_inner", "half_width_outer"):
+        q[k] = fine.detail[k]
+    fields.update(fine.detail["fields"])
+    stats = {"certificates": as_dict, "finest": finest, "method": s.method, "similarity": s.similarity,
+             "element_order": s.order, "iterations": fine.iterations, "residual": fine.residual,
+             "levels": [{"h": lv.h, "h_over_b": lv.h / certs["roller_loads"]["b"], "n_dofs": lv.n_dofs,
+                         "q_max": lv.q_max, "radial_deflection": lv.radial_deflection,
+                         "load_zone_angle": lv.load_zone_angle, "loaded_rollers": lv.loaded_rollers,
+                         "roller_loads": lv.roller_loads.tolist(), "iterations": lv.iterations,
+                         "residual": lv.residual, "penetration": lv.penetration, "total_force": lv.total_force,
+                         "included_rollers": [int(j) for j in lv.included], "time_s": lv.time_s} for lv in levels],
+             "approach_reference": "shaft (tied bore) relative to the housing (clamped OD)"}
+    return ModelResult("fem", quantities=q, stats=stats, fields=fields)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"rigid_ring": rigid_ring, "integral": integral,
+                                                 "condensed": condensed, "fem": fem}
+STRESS_QUANTITIES = ("q_max", "roller_loads_max")
+
+
+def load_of(scene: Scene) -> float:
+    """The radial load (N) every model's ``total_force`` must balance."""
+    return scene["load.radial"]
+
+
+def profile_scale(scene: Scene) -> float:
+    return 0.5 * scene["geometry.roller_diameter"]
