@@ -55,7 +55,7 @@ SCHEMA: dict[str, Key] = {
     "bearing.tilt": Key("float", "rad", "misalignment of the inner ring (single row, iso16281)", lo=-0.01, hi=0.01,
                         lo_closed=True, hi_closed=True),
     "bearing.rows": Key("int", "-", "rows (iso16281 law)", lo=1, hi=8, lo_closed=True, hi_closed=True),
-    "bearing.row_spacing": Key("float", "m", "distance between neighbouring rows", lo=0.0),
+    "bearing.row_spacing": Key("float", "m", "distance between neighbouring rows", lo=0.0, lo_closed=True),
     "bearing.row_arrangement": Key("str", "-", "contact-angle directions of the rows",
                                    choices=("alternate", "same")),
     "bearing.dynamic_load_rating": Key("float", "N", "C_r (default: ISO 281 from the geometry)", lo=0.0),
@@ -379,3 +379,64 @@ def load_of(scene: Scene) -> float:
 
 def profile_scale(scene: Scene) -> float:
     return 0.5 * scene["geometry.roller_diameter"]
+
+
+def _with_clearance(params: dict[str, Any], pd: float) -> dict[str, Any]:
+    return {"geometry.outer_raceway_diameter": params["geometry.inner_raceway_diameter"]
+            + 2.0 * params["geometry.roller_diameter"] + pd}
+
+
+def stress_cases(scene: Scene) -> list:
+    """Extremes (spec §6.3): clearance from preload (P_d = -0.5 delta_r) to 20 delta_r (delta_r: the zero-clearance
+    rigid-ring deflection), Z from 3 to 40 on the same pitch circle (roller diameter scaled to fit), the load line
+    from a roller to midway between two, the load over seven decades (1e-6 to 10 x nominal), exponents 1, 10/9,
+    3/2 (power law), and for elastic rings a housing arc down to 15 deg (condensed model). Every case runs the
+    fast models; the generic checks catch lost equilibrium (|sum Q cos psi - F_r| > 1e-6 F_r) and negative loads."""
+    from ..result import StressCase
+
+    p = scene.params
+    fast = {"models.run": ["rigid_ring", "integral"]}
+    law = roller_law({**p, **_with_clearance(p, 0.0)})
+    dr0 = rigid_ring_solve(p["bearing.rollers"], 0.0, law, p["load.radial"]).radial_deflection
+    cases = []
+    for ratio in (-0.5, 0.0, 0.5, 1.0, 2.0, 5.0, 20.0):
+        cases.append(StressCase(f"P_d/delta_r={ratio:g}", {**fast, **_with_clearance(p, ratio * dr0)}))
+    pitch = 0.5 * (p["geometry.inner_raceway_diameter"] + p["geometry.outer_raceway_diameter"])
+    pd = clearance(p)
+    for z in (3, 4, 6, 9, 20, 40):
+        d = min(p["geometry.roller_diameter"], 0.8 * np.pi * pitch / z)
+        cases.append(StressCase(f"Z={z}", {**fast, "bearing.rollers": z, "geometry.roller_diameter": d,
+                                           "geometry.inner_raceway_diameter": pitch - d,
+                                           "geometry.outer_raceway_diameter": pitch + d + pd}))
+    for frac in (0.25, 0.5, 0.75, 1.0):
+        cases.append(StressCase(f"load angle={frac:g} pi/Z", {**fast, "load.angle": frac * np.pi / p["bearing.rollers"]}))
+    for factor in (1e-6, 1e-4, 1e-2, 1.0, 10.0):
+        cases.append(StressCase(f"F_r={factor:g} x nominal", {**fast, "load.radial": factor * p["load.radial"]}))
+    for n in (1.0, 10.0 / 9.0, 1.5):
+        for frac in (0.0, 1.0):
+            cases.append(StressCase(f"power n={n:.4g}, load angle={frac:g} pi/Z",
+                                    {**fast, "bearing.law": "power", "bearing.load_exponent": n,
+                                     "load.angle": frac * np.pi / p["bearing.rollers"]}))
+    if not p["materials.rings.rigid"] and "geometry.outside_diameter" in p:
+        for deg in (90.0, 60.0, 30.0, 15.0):
+            cases.append(StressCase(f"housing arc {deg:g} deg", {"models.run": ["rigid_ring", "condensed"],
+                                                                  "support.housing_half_angle": np.radians(deg)}))
+        cases.append(StressCase("housing arc 15 deg, P_d/delta_r=-0.5",
+                                {"models.run": ["rigid_ring", "condensed"], "support.housing_half_angle": np.radians(15.0),
+                                 **_with_clearance(p, -0.5 * dr0)}))
+    return cases
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    """``femcheck bench``: rigid_ring and integral (no discretisation), the condensed model's patch-zone spacing
+    (b_0 to b_0/8, FE ring compliances included), and single FE levels refined by the scene's ratio."""
+    r = scene["numerics.fem_ratio"]
+    h0, g0 = scene["numerics.fem_h_contact"], scene["numerics.fem_grading"]
+    hr, hl = scene["numerics.fem_h_max_ring"], scene["numerics.fem_h_max_roller"]
+    sweeps: dict[str, list[dict[str, Any]]] = {"rigid_ring": [{}], "integral": [{}]}
+    if scene["bearing.rows"] == 1 and scene["bearing.contact_angle"] == 0:
+        sweeps["condensed"] = [{"numerics.condensed_h_contact": h} for h in (1.0, 0.5, 0.25, 0.125)]
+        sweeps["fem"] = [{"numerics.fem_levels": 1, "numerics.fem_h_contact": h0 / r**k,
+                          "numerics.fem_grading": g0 / r**k, "numerics.fem_h_max_ring": hr / r**k,
+                          "numerics.fem_h_max_roller": hl / r**k} for k in range(3)]
+    return sweeps
