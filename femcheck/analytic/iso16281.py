@@ -100,7 +100,7 @@ def sliced_equilibrium(rows: list[Row], rollers: int, pitch_radius: float, lengt
         G.append(np.stack(cols, axis=-1).reshape(-1, len(dofs)))
         off = 0.5 * clearance * ca + drop[None, :] + np.zeros((rollers, 1))
         if tilt and not multi:                        # prescribed misalignment theta_y = tilt
-            off = off - ca * np.tan(tilt) * xk[None, :] * cp
+            off = off + ca * np.tan(tilt) * xk[None, :] * cp   # delta_jk = ... - x_k tan(theta) cos(psi_j)
         c.append(off.ravel())
     G, c = np.vstack(G), np.concatenate(c)
     F = np.zeros(len(dofs))
