@@ -125,7 +125,7 @@ DEFAULTS: dict[str, Any] = {
     "models.contrast": [],
     "numerics.fem_levels": 3,
     "numerics.fem_ratio": 2.0**0.5,
-    "numerics.fem_h_contact": 0.25,
+    "numerics.fem_h_contact": 0.25 / 2**0.5,
     "numerics.fem_zone": 2.5,
     "numerics.fem_grading": 0.6,
     "numerics.fem_h_max_ring": 0.5,

@@ -47,37 +47,39 @@ def _polar(run: RunResult, path: Path) -> str | None:
 
 
 def _rings(run: RunResult, path: Path) -> str | None:
+    """The rings' elastic deformation (the inner ring relative to the shaft it is tied to), magnified."""
     m = run.models.get("fem")
     if m is None or m.status != "ok" or "ring_outer_raceway_xy" not in m.fields:
         return None
     f = m.fields
-    moves = [np.abs(f[k]).max() for k in f if k.startswith("ring_") and k.endswith("_u")]
-    radius = np.hypot(*f["ring_outer_back_xy"]).max()
-    scale = 0.08 * radius / max(max(moves), 1e-30)
-    fig, ax = plt.subplots(figsize=(5.8, 5.8))
+    shaft = np.asarray(f.get("shaft_delta", np.zeros(2)))[:, None]
+    elastic = {}
     for name in ("inner", "outer"):
         for surf in ("raceway", "back"):
             key = f"ring_{name}_{surf}_xy"
-            if key not in f:
-                continue
-            xy, u = f[key], f[f"ring_{name}_{surf}_u"]
-            # rotate so that the load (+x) points down
-            rot = np.array([[0.0, 1.0], [-1.0, 0.0]])
-            a, b = rot @ xy, rot @ (xy + scale * u)
-            ax.plot(*(1e3 * np.c_[a, a[:, :1]]), color="0.7", lw=0.6)
-            ax.plot(*(1e3 * np.c_[b, b[:, :1]]), color="tab:red" if name == "outer" else "tab:blue", lw=1.0)
-    if "roller_rho" in f:
-        psi = np.asarray(f["roller_angle"])
-        r_c = 0.5 * (np.hypot(*f["ring_inner_raceway_xy"]).max() + np.hypot(*f["ring_outer_raceway_xy"]).min())
-        rad = 0.5 * (np.hypot(*f["ring_outer_raceway_xy"]).min() - np.hypot(*f["ring_inner_raceway_xy"]).max())
-        for j, p in enumerate(psi):
-            rho = np.nan_to_num(f["roller_rho"][j])
-            c = np.array([np.sin(p), -np.cos(p)]) * (r_c + scale * rho)
-            t = np.linspace(0, 2 * np.pi, 60)
-            ax.plot(1e3 * (c[0] + rad * np.cos(t)), 1e3 * (c[1] + rad * np.sin(t)), color="0.4", lw=0.5)
+            if key in f:
+                u = np.asarray(f[f"ring_{name}_{surf}_u"]) - (shaft if name == "inner" else 0.0)
+                elastic[key] = (np.asarray(f[key]), u)
+    radius = np.hypot(*f["ring_outer_back_xy"]).max()
+    scale = 0.06 * radius / max(max(np.abs(u).max() for _, u in elastic.values()), 1e-30)
+    rot = np.array([[0.0, 1.0], [-1.0, 0.0]])          # the load (+x) points down
+    fig, ax = plt.subplots(figsize=(5.8, 5.8))
+    for key, (xy, u) in elastic.items():
+        a, b = rot @ xy, rot @ (xy + scale * u)
+        ax.plot(*(1e3 * np.c_[a, a[:, :1]]), color="0.7", lw=0.6)
+        ax.plot(*(1e3 * np.c_[b, b[:, :1]]), color="tab:red" if "outer" in key else "tab:blue", lw=1.0)
+    psi = np.asarray(f["roller_angle"])
+    loads = np.asarray(f["roller_loads"])
+    r_c = 0.5 * (np.hypot(*f["ring_inner_raceway_xy"]).max() + np.hypot(*f["ring_outer_raceway_xy"]).min())
+    rad = 0.5 * (np.hypot(*f["ring_outer_raceway_xy"]).min() - np.hypot(*f["ring_inner_raceway_xy"]).max())
+    t = np.linspace(0, 2 * np.pi, 60)
+    for j, p in enumerate(psi):
+        c = np.array([np.sin(p), -np.cos(p)]) * r_c
+        ax.fill(1e3 * (c[0] + rad * np.cos(t)), 1e3 * (c[1] + rad * np.sin(t)), color="tab:orange",
+                alpha=float(0.1 + 0.8 * loads[j] / loads.max()), lw=0)
     ax.set_aspect("equal")
     ax.set_xlabel("mm")
-    ax.set_title(f"FE rings, displacements x {scale:.3g} (load downwards)")
+    ax.set_title(f"FE ring deformation x {scale:.3g} (load downwards)")
     return _save(fig, path)
 
 
@@ -137,8 +139,9 @@ def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
     for name, fn, caption in (
             ("polar", _polar, "Roller loads (N) of every model around the bearing, the FE reference as bars; "
                               "dotted lines mark each model's load-zone half-angle."),
-            ("rings", _rings, "FE finest level: inner (blue) and outer (red) ring boundaries, deformed (scaled) "
-                              "over undeformed (grey), rollers displaced by their radial translation.")):
+            ("rings", _rings, "FE finest level: elastic deformation of the inner (blue, relative to the shaft it "
+                              "is tied to) and outer ring (red, in the housing) over the undeformed rings (grey), "
+                              "magnified; rollers shaded by their load.")):
         f = fn(run, outdir / f"{prefix}-{name}.png")
         if f:
             out.figures.append(Figure(f, caption))
