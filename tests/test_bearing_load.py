@@ -230,3 +230,18 @@ def test_run_rigid_rings_analytic_models_json():
     assert rr["quantities"]["total_force"] == pytest.approx(8900.0, rel=1e-10)
     # rigid rings: the condensed model has no ring compliance and is the rigid-ring model with the same law
     assert cd["quantities"]["q_max"] == pytest.approx(rr["quantities"]["q_max"], rel=1e-9)
+
+
+@pytest.mark.slow
+def test_stress_sweep_has_no_failure():
+    """Issue 13 item 6: clearance from preload to 20 delta_r, Z = 3 ... 40, load angle, load over seven decades,
+    exponents 1, 10/9, 3/2, housing arcs down to 15 deg (condensed): no lost equilibrium (the generic check of
+    sum Q cos psi against F_r to 1e-6), no negative roller load, no failure."""
+    from femcheck.stability import stress
+
+    cases = stress(load_scene("crb-elastic-rings"), workers=1)
+    assert len(cases) >= 30
+    assert [(c.label, c.problems) for c in cases if c.status != "ok"] == []
+    labels = " ".join(c.label for c in cases)
+    for needle in ("P_d/delta_r=-0.5", "P_d/delta_r=20", "Z=3", "Z=40", "F_r=1e-06", "power n=1.5", "housing arc 15"):
+        assert needle in labels
