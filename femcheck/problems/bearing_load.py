@@ -12,7 +12,8 @@ Models:
 Quantities (SI): ``q_max`` (N), ``radial_deflection`` (m, shaft relative to housing), ``loaded_rollers``,
 ``load_zone_angle`` (rad, half-angle), ``load_zone_parameter`` (eps), ``stribeck_factor`` Z Q_max/F_r,
 ``total_force`` (N, sum Q_j cos psi_j cos alpha: the equilibrium check), ``rating_life`` (L10r, 1e6 rev, law
-iso16281), ``row_share_<r>`` (%, several rows); field ``roller_loads`` (N) at ``roller_angle`` (rad from the load
+iso16281), ``half_width_inner|outer`` (m) and ``p_max_inner|outer`` (Pa) of the most loaded roller (2D law: Hertz
+at its load; FE: from the nodal contact forces), ``row_share_<r>`` (%, several rows); field ``roller_loads`` (N) at ``roller_angle`` (rad from the load
 line), compared roller by roller as ``roller_loads_max`` = max_j |Q_j - Q_j,ref| / max Q_ref.
 The 2D models (condensed, fem) use the plane-strain roller law; every approach is relative to a body reference
 (roller centre, tied bore, clamped OD): 2D plane strain has no absolute half-plane approach.
@@ -239,6 +240,16 @@ def _quantities(psi, loads, interference, radial_load, delta_r, z, ca=1.0) -> tu
     return q, fields
 
 
+def _hertz(law, q_max: float) -> dict[str, float]:
+    """2D Hertz half-widths (m) and peak pressures (Pa) of the most loaded roller's two contacts (2D law only)."""
+    if not isinstance(law, laws.PlaneStrainRoller):
+        return {}
+    a = law.half_widths(q_max)
+    p = q_max / law.length
+    return {"half_width_inner": float(a[0]), "half_width_outer": float(a[1]),
+            "p_max_inner": float(2 * p / (np.pi * a[0])), "p_max_outer": float(2 * p / (np.pi * a[1]))}
+
+
 def _rating(scene: Scene, slice_loads: np.ndarray) -> float:
     D, length = scene["geometry.roller_diameter"], scene["geometry.roller_length"]
     dpw = 0.5 * (scene["geometry.inner_raceway_diameter"] + scene["geometry.outer_raceway_diameter"])
@@ -288,6 +299,7 @@ def rigid_ring(scene: Scene, progress=None) -> ModelResult:
     q, fields = _quantities(rr.psi, rr.loads, rr.deflection, fr, rr.radial_deflection, z,
                             np.cos(p["bearing.contact_angle"]))
     q["load_zone_angle"], q["load_zone_parameter"] = rr.load_zone_angle, rr.eps
+    q.update(_hertz(law, rr.q_max))
     stats = {"iterations": rr.iterations, "residual": rr.residual, "law": getattr(law, "name", p["bearing.law"]),
              "displacement": rr.displacement.tolist(), "axial_reaction": rr.axial_reaction}
     return ModelResult("rigid_ring", quantities=q, stats=stats, fields=fields)
@@ -322,6 +334,7 @@ def condensed(scene: Scene, progress=None) -> ModelResult:
     r = solve(sec, s, progress)
     psi = np.angle(np.exp(1j * sec.angles))
     q, fields = _quantities(psi, r.loads, r.interference, p["load.radial"], np.hypot(*r.delta), sec.rollers)
+    q.update(_hertz(sec.roller_law(), float(r.loads.max())))
     stats = {"iterations": r.newton_iterations, "width_iterations": r.width_iterations, "residual": r.residual,
              "b0": r.b0, "n_dofs": r.ring_dofs, "roller": s.roller, "delta": r.delta.tolist()}
     fields["half_width_inner"], fields["half_width_outer"] = r.widths
