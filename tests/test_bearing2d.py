@@ -125,7 +125,7 @@ def test_thin_ring_against_roark():
     (pi/4 - 2/pi) and (2/pi - 1/2) P R^3/(E' I) (Roark, bending only); FE +0.32 % / +0.06 % (spec: +0.33 / +0.08 %,
     shear and normal force). Checks the sector-replicated ring mesh, P2 elasticity and the inertia relief."""
     from femcheck.bem.bearing_condensed import _hertz_patch
-    from femcheck.fem.bearing2d_bodies import _pins, free_body_compliance, node_table, tributary_lengths, zone_nodes
+    from femcheck.fem.bearing2d_bodies import rigid_mode_pins, free_body_compliance, node_table, tributary_lengths, zone_nodes
     from femcheck.meshes import bearing2d as meshes
     from femcheck.meshes.plane import MeshSpec
     from femcheck.solvers.elasticity2d import make_body
@@ -148,7 +148,7 @@ def test_thin_ring_against_roark():
         M[dofs[0, k], col] += sign * np.cos(a)
         M[dofs[1, k], col] += sign * np.sin(a)
     groups = np.zeros(xy.shape[1], int)
-    along, across = free_body_compliance(body, xy, dofs, B, groups, _pins(xy, dofs, groups), M)[:, 0]
+    along, across = free_body_compliance(body, xy, dofs, B, groups, rigid_mode_pins(xy, dofs, groups), M)[:, 0]
     unit = R**3 / (STEEL.E / (1 - STEEL.nu**2) * t**3 / 12)
     assert along / ((np.pi / 4 - 2 / np.pi) * unit) == pytest.approx(1.0033, abs=0.002)
     assert across / ((2 / np.pi - 0.5) * unit) == pytest.approx(1.0008, abs=0.002)

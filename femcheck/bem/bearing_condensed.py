@@ -26,7 +26,7 @@ import numpy as np
 from ..analytic.bearing_laws import PlaneStrainRoller
 from ..errors import ConvergenceError
 from ..fem.bearing2d import BearingSection, reference_half_width
-from ..fem.bearing2d_bodies import (_pins, free_body_compliance, node_table, tributary_lengths, zone_nodes)
+from ..fem.bearing2d_bodies import (rigid_mode_pins, free_body_compliance, node_table, tributary_lengths, zone_nodes)
 from ..meshes import bearing2d as meshes
 from ..meshes.plane import MeshSpec
 from ..solvers.elasticity2d import CondensedBody, boundary_dofs, make_body
@@ -133,7 +133,7 @@ def roller_fem_offset(sec: BearingSection, law: PlaneStrainRoller, b0: float, s:
         B[dofs[0, idx], 0] += sign * _hertz_patch(t, tributary_lengths(t, s.order), a)
         Mv[dofs[0, idx[np.argmin(np.abs(t))]], 0] += sign
     groups = np.zeros(xy.shape[1], int)
-    d_fe = float(free_body_compliance(body, xy, dofs, B, groups, _pins(xy, dofs, groups), Mv)[0, 0])
+    d_fe = float(free_body_compliance(body, xy, dofs, B, groups, rigid_mode_pins(xy, dofs, groups), Mv)[0, 0])
     d_law = float(law.deflection(p0 * law.length)) / p0
     return (d_fe - d_law) / law.c, body.n_dofs
 

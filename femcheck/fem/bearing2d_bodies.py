@@ -128,7 +128,7 @@ def free_body_compliance(body: Body, xy: np.ndarray, dofs: np.ndarray, B: np.nda
     return (B if measure is None else measure).T @ U
 
 
-def _pins(xy: np.ndarray, dofs: np.ndarray, groups: np.ndarray) -> np.ndarray:
+def rigid_mode_pins(xy: np.ndarray, dofs: np.ndarray, groups: np.ndarray) -> np.ndarray:
     """Per group: both DOFs of the node nearest the group's centroid, and the DOF normal to the line to the
     node farthest from it."""
     out = []
@@ -159,7 +159,7 @@ def roller_compliance(mesh: TriMesh, radius: float, offsets: np.ndarray, materia
     B[dofs[0, inner], np.arange(n)] = 1.0            # inner pole: towards the roller centre is +x
     B[dofs[0, outer], n + np.arange(n)] = -1.0       # outer pole: towards the centre is -x
     groups = np.zeros(xy.shape[1], int)
-    W = free_body_compliance(body, xy, dofs, B, groups, _pins(xy, dofs, groups))
+    W = free_body_compliance(body, xy, dofs, B, groups, rigid_mode_pins(xy, dofs, groups))
     return RollerCompliance(0.5 * (W + W.T), t_in, body.n_dofs, mesh)
 
 
@@ -201,7 +201,7 @@ def rollers_meshed(mesh: TriMesh, radius: float, pitch_radius: float, angles: np
         Bj[dofs[1, outer], n + np.arange(n)] = -s
         cols.append(Bj)
     B = np.concatenate(cols, axis=1)
-    W = free_body_compliance(body, xy, dofs, B, groups, _pins(xy, dofs, groups))
+    W = free_body_compliance(body, xy, dofs, B, groups, rigid_mode_pins(xy, dofs, groups))
     W = 0.5 * (W + W.T)
     return np.stack([W[j * 2 * n:(j + 1) * 2 * n, j * 2 * n:(j + 1) * 2 * n] for j in range(z)])
 
