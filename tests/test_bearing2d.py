@@ -152,3 +152,27 @@ def test_thin_ring_against_roark():
     unit = R**3 / (STEEL.E / (1 - STEEL.nu**2) * t**3 / 12)
     assert along / ((np.pi / 4 - 2 / np.pi) * unit) == pytest.approx(1.0033, abs=0.002)
     assert across / ((2 / np.pi - 0.5) * unit) == pytest.approx(1.0008, abs=0.002)
+
+
+@pytest.mark.parametrize("name", ["crb-rigid-rings", "crb-elastic-rings", "crb-housing-arc"])
+def test_shipped_reference_is_current_certified_and_agrees(name):
+    """The stored FE references (regenerate with `femcheck run SCENE` under the lock after an FE change): current,
+    q_max certified with < 0.2 % between the two finest levels, solved in < 5 min, and issue 13's agreements:
+    rigid raceways = rigid-ring theory with the 2D law (0.5 % of Q_max per roller), condensed = FE (2 %)."""
+    from femcheck import references
+    from femcheck.problems import problem
+    from femcheck.runner import model_key
+    from femcheck.scene import load_scene
+
+    sc = load_scene(name)
+    ref = references.load(sc.kind, "fem", model_key(sc, "fem"))
+    assert ref is not None, f"references/ has no entry for the current FE code; run femcheck run {name}"
+    cert = ref.stats["certificates"]
+    assert cert["q_max"]["certified"] and cert["roller_loads"]["certified"]
+    levels = ref.stats["levels"]
+    assert len(levels) >= 3 and abs(levels[-1]["q_max"] / levels[-2]["q_max"] - 1) < 0.002
+    assert ref.stats["reference"]["run_time_s"] < 300
+    model = "rigid_ring" if name == "crb-rigid-rings" else "condensed"
+    res = problem(sc.kind).MODELS[model](sc)
+    q, qref = res.fields["roller_loads"], ref.fields["roller_loads"]
+    assert np.abs(q - qref).max() / qref.max() < (0.005 if model == "rigid_ring" else 0.02)
