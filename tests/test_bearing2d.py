@@ -176,3 +176,7 @@ def test_shipped_reference_is_current_certified_and_agrees(name):
     res = problem(sc.kind).MODELS[model](sc)
     q, qref = res.fields["roller_loads"], ref.fields["roller_loads"]
     assert np.abs(q - qref).max() / qref.max() < (0.005 if model == "rigid_ring" else 0.02)
+    if model == "condensed":
+        # measured 0.04 % (full housing) and 0.07 % (arc); without the width revision (seed 003 eq 17's role)
+        # the condensed model is 0.8 % off: this bound tells the two apart
+        assert np.abs(q - qref).max() / qref.max() < 0.003
