@@ -103,9 +103,12 @@ def _load_table(run: RunResult) -> Table | None:
            [float(np.degrees(models[n].quantities.get("load_zone_angle", np.nan))) for n in names] + \
            ["" for n in names if n != ref_name]
     rows.append(zone)
+    rows_note = " Several rows: each roller position's largest load over the rows." if \
+        any("row_shares" in m.fields for m in models.values()) else ""
     return Table("Roller loads by model", header, rows,
                  f"Rollers sorted by their angle psi from the load line. Differences relative to the {ref_name} "
-                 "Q_max: where rigid-ring theory departs from the FE (rings' compliance, housing support) shows here.")
+                 "Q_max: where rigid-ring theory departs from the FE (rings' compliance, housing support) shows "
+                 "here." + rows_note)
 
 
 def _table3(run: RunResult) -> Table | None:
