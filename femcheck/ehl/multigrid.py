@@ -30,7 +30,7 @@ from .reynolds import faces, operator, time_weights
 class Problem:
     """The dimensionless EHL problem: lubricant laws, lambda_bar, deformation factor, Rx/Ry, load 2 pi/(3 kappa),
     the X range of the domain (the Y range is centred and as wide), an optional indent, the H0 relaxation
-    factor c_h and the first guess of H0."""
+    factor c_h and a first guess of the central film ``hc_start`` (H0 then follows from the Hertz deflection)."""
 
     lubricant: Lubricant
     lam: float
@@ -41,7 +41,7 @@ class Problem:
     x_end: float = 1.5
     indent: Indent | None = None
     h0_factor: float = 0.1
-    h0_start: float = 0.0
+    hc_start: float = 0.1
 
     @property
     def load(self) -> float:
@@ -135,7 +135,7 @@ class Multigrid:
             raise ValueError(f"{levels} levels on n = {n}: the coarsest grid would have fewer than 8 intervals")
         self.prob = prob
         self.levels = [Level(n >> (levels - 1 - l), prob) for l in range(levels)]
-        self.H0 = prob.h0_start
+        self.H0 = 0.0
         self.T = 0.0
         self.coarsest_sweeps, self.pre, self.post, self.gamma = coarsest_sweeps, pre, post, gamma
         self.sweeps = 0        # work counter in finest-grid sweep equivalents
@@ -230,3 +230,5 @@ class Multigrid:
         X, Y = lv.film.X, lv.film.Y
         lv.P = np.sqrt(np.clip(1.0 - X**2 - (self.prob.kappa * Y) ** 2, 0.0, None))
         lv.P[0, :] = lv.P[-1, :] = lv.P[:, 0] = lv.P[:, -1] = 0.0
+        i0, j0 = np.argmin(np.abs(lv.film.x)), np.argmin(np.abs(lv.film.y))
+        self.H0 = self.prob.hc_start - lv.film.deformation(lv.P)[i0, j0]

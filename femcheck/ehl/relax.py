@@ -26,7 +26,7 @@ from .reynolds import operator, time_weights
 
 XI_LIMIT = 0.3
 OMEGA_GS = 0.4
-OMEGA_JA = 0.2
+OMEGA_JA = 0.3
 
 
 def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:

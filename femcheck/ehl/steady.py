@@ -49,11 +49,12 @@ def converge(mg: Multigrid, tol: float, load_tol: float, max_cycles: int, what: 
     """Cycles on the finest grid until the residual and load criteria hold."""
     history = []
     top = len(mg.levels) - 1
-    for k in range(1, max_cycles + 1):
-        mg.cycle(top)
+    for k in range(0, max_cycles + 1):
+        if k:
+            mg.cycle(top)
         res, _ = mg.residual_norm(mg.fine)
         history.append(res)
-        if not np.isfinite(res) or not np.isfinite(mg.H0):
+        if not np.isfinite(res) or not np.isfinite(mg.H0) or not np.isfinite(mg.fine.P).all():
             raise ConvergenceError(what, k, float(res), tol, "the iteration diverged (non-finite pressure)")
         if res <= tol and mg.load_error() <= load_tol:
             return k, history
