@@ -79,7 +79,9 @@ def run(params: dict[str, Any], progress=None) -> ModelResult:
             c = model.crossing(s, {"diameter": params["indent.diameter"], "slope": params["indent.slope"],
                                    "decay": params["indent.decay"]}, params["kinematics.slide_roll"], tol, load_tol)
             sol = c["final"]
-            q = model.film_quantities(s, sol)
+            # film quantities of the smooth contact; the indent's effect is in the additional pressures
+            q = model.film_quantities(s, c["smooth"])
+            q["p_max_indented"] = float(sol.P.max()) * s.g.p_hertz
             amps = {k: v[-1] for k, v in c["amplitudes"].items()}
             q.update({f"additional_pressure_{k}": amps[k] * s.g.p_hertz for k in DP_NAMES})
             q["additional_pressure"] = amps["amplitude"] * s.g.p_hertz

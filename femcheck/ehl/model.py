@@ -103,7 +103,8 @@ def crossing(s: Setup, indent_keys: dict[str, float], slide_roll: float, tol: fl
         if progress:
             progress(msg)
 
-    hist = transient.march(mg, steps, tol=tol, load_tol=load_tol, keep=lambda k, T: k in kept, progress=on_step)
+    hist = transient.march(mg, steps, tol=tol, load_tol=load_tol, keep=lambda k, T: k in kept, progress=on_step,
+                           base=smooth.P)
     final = hist.snapshots[-1]
     check_film(final, f"EHL transient ({s.n + 1}^2 nodes) at X_D = 0")
     return {"smooth": smooth, "history": hist, "amplitudes": amps, "indent": ind, "final": final, "steps": steps,

@@ -127,7 +127,7 @@ class CycleLog:
 class Multigrid:
     """FAS/FMG solver state: levels (0 = coarsest), H0, time T."""
 
-    def __init__(self, prob: Problem, n: int, levels: int, coarsest_sweeps: int = 10, pre: int = 2,
+    def __init__(self, prob: Problem, n: int, levels: int, coarsest_sweeps: int = 4, pre: int = 2,
                  post: int = 1, gamma: int = 1):
         if n & (n - 1) or n < 16:
             raise ValueError(f"grid intervals {n}: need a power of two >= 16")

@@ -49,10 +49,31 @@ def _inject_old(mg: Multigrid) -> None:
         coarse.r1, coarse.r2 = inject(fine.r1), inject(fine.r2)
 
 
+def shift_x(F: np.ndarray, s: float) -> np.ndarray:
+    """F moved downstream by s nodes along axis 0 (linear interpolation; zero flows in at the inlet)."""
+    k = int(np.floor(s))
+    w = s - k
+    out = np.zeros_like(F)
+
+    def moved(m):
+        g = np.zeros_like(F)
+        if m < F.shape[0]:
+            g[m:] = F[:F.shape[0] - m]
+        return g
+
+    out = (1.0 - w) * moved(k) + (w * moved(k + 1) if w else 0.0)
+    return out
+
+
 def march(mg: Multigrid, steps: int, tol: float = 1e-7, load_tol: float = 1e-7, max_cycles: int = 40,
-          keep: Callable[[int, float], bool] | None = None, progress=None) -> History:
+          keep: Callable[[int, float], bool] | None = None, progress=None,
+          base: np.ndarray | None = None) -> History:
     """March ``steps`` time steps of size hT (set by :func:`start`). ``keep(k, T)`` says which steps to store as
-    :class:`Solution` snapshots (pressure and film fields)."""
+    :class:`Solution` snapshots (pressure and film fields).
+
+    First guess of each step: with ``base`` (the smooth steady pressure), the previous disturbance P - base moved
+    with the indent by u_D hT (the pressure disturbance of an indent travels with it); otherwise the linear
+    extrapolation in time of P. H0 is extrapolated linearly."""
     lv = mg.fine
     ht = lv.ht
     hist = History()
@@ -65,8 +86,12 @@ def march(mg: Multigrid, steps: int, tol: float = 1e-7, load_tol: float = 1e-7, 
         mg.set_time(mg.T + ht)
         # linear extrapolation in time of P and H0 as the first guess (halves the cycles per step)
         now = (lv.P.copy(), mg.H0)
-        if prev is not None:
+        if base is not None:
+            speed = mg.prob.indent.speed_ratio if mg.prob.indent is not None else 1.0
+            lv.P = np.maximum(base + shift_x(now[0] - base, speed * ht / lv.h), 0.0)
+        elif prev is not None:
             lv.P = np.maximum(2.0 * now[0] - prev[0], 0.0)
+        if prev is not None:
             mg.H0 = 2.0 * now[1] - prev[1]
         prev = now
         cycles, h = converge(mg, tol, load_tol, max_cycles, f"EHL transient step {k} (T = {mg.T:.4g})")
