@@ -5,7 +5,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from femcheck.ehl import groups, model, steady, transient
+from femcheck.ehl import groups, model, outputs, steady, transient
 from femcheck.ehl.film import Indent
 from femcheck.errors import ConvergenceError
 
@@ -82,16 +82,24 @@ def test_indent_outside_domain_gives_smooth_solution():
     assert np.abs(mg.fine.P - sol.P).max() < 1e-9
 
 
-def test_crossing_keeps_load_balance_and_reports_amplitudes():
+def test_indent_march_keeps_load_balance_and_opens_the_gap():
+    """An indent (Phi = 1, D/Phi = 1/4, K = 4) marched from X_D = -1 to the centre (16 steps, 65^2): load balance
+    at every step, the hole opens the film by about its depth (the indent sign of eq 2.4 as corrected), the
+    pressure falls in the hole and rises on the shoulders."""
     s = setup(100, 10, x=(-2.5, 1.5))
-    c = model.crossing(s, {"diameter": 1.0, "slope": 0.25, "decay": 4.0}, 0.0, 1e-7, 1e-7)
-    hist = c["history"]
+    ind = Indent(1.0, 0.25, 4.0, x0=-1.0)
+    sol, mg = _steady_then_start(s, ind, tol=1e-8)
+    hist = transient.march(mg, 16, tol=1e-7, load_tol=1e-7, keep=lambda k, T: True, base=sol.P)
     assert max(hist.load_error) <= 1e-6
     assert hist.x_indent[-1] == pytest.approx(0.0, abs=1e-12)
-    a = {k: v[-1] for k, v in c["amplitudes"].items()}
-    assert a["centre"] < 0 < a["rear"] and a["amplitude"] >= max(a["rear"], a["front"], a["lateral"]) - 1e-15
-    # the pressure field is kept per step, the last one at X_D = 0
-    assert hist.snapshots[-1].P.shape == (65, 65) and hist.snapshots[-1].T == pytest.approx(hist.T[-1])
+    last = hist.snapshots[-1]
+    i0, j0 = int(np.argmin(np.abs(last.x))), int(np.argmin(np.abs(last.y)))
+    assert last.x[i0] == pytest.approx(0.0, abs=1e-12) and last.y[j0] == pytest.approx(0.0, abs=1e-12)
+    assert last.H[i0, j0] - sol.H[i0, j0] > 0.5 * ind.depth
+    a = outputs.additional_pressure(last.x, last.y, last.P - sol.P, 0.0, 0.0, 1.0)
+    assert a["centre"] < -0.2 and min(a["rear"], a["front"], a["lateral"]) > 0.02
+    assert a["amplitude"] == pytest.approx(max(a["rear"], a["front"], a["lateral"]), rel=1e-12)
+    assert last.P.shape == (65, 65) and last.T == pytest.approx(hist.T[-1])
 
 
 def test_negative_film_is_refused_not_reported():
