@@ -12,7 +12,7 @@ from ..materials import effective_modulus
 from ..result import ModelResult
 from ..scene import elastic
 from ..solvers.convergence import certify
-from . import groups, model, outputs
+from . import groups, model
 
 INDENT_KEYS = ("indent.diameter", "indent.slope", "indent.decay")
 FILM_QUANTITIES = ("h_central", "h_min", "p_max", "H_central_moes", "H_min_moes")

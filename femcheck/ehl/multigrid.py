@@ -192,9 +192,11 @@ class Multigrid:
                 relax_colour(lv.P, lv.f, st, lv.h, lv.ht, lv.r1, lv.r2, self.prob.c_el, f0.K0, f0.K1, colour)
         self.sweeps += sweeps * 4.0 ** (l - len(self.levels) + 1)
 
-    def relax_coarsest(self, sweeps: int, load_tol: float = 1e-9, max_sweeps: int = 40) -> None:
+    def relax_coarsest(self, sweeps: int, load_tol: float = 1e-9, max_sweeps: int = 8) -> None:
         """``sweeps`` relaxations with an H0 update after each, continued (up to ``max_sweeps``) until the
-        coarse load balance holds to ``load_tol``: the fine load error after a cycle is the coarse one."""
+        coarse load balance holds to ``load_tol``: the fine load error after a cycle is the coarse one. A W-cycle
+        visits the coarsest grid 2^(levels-1) times, so a few sweeps per visit suffice (8 at most: same cycle
+        counts as 40, a third of the time, measured at 65^2 and 129^2)."""
         lv = self.levels[0]
         for k in range(max_sweeps):
             self.relax(0, 1)

@@ -184,10 +184,11 @@ def dry(scene: Scene, progress=None) -> ModelResult:
             **{k: v for k, v in p.items() if k.startswith("materials.")},
             **{k: p[k] for k in INDENT_KEYS}}
     s = indent_contact.solve_indented(keys)
-    return ModelResult("dry", quantities={"additional_pressure": s["dp"], "p_max": float(s["dent"].pressure.max())},
+    return ModelResult("dry", quantities={"additional_pressure": s["dp"]},
                        stats={"iterations": s["dent"].iterations, "residual": s["dent"].residual,
                               "additional_pressure_over_p_hertz": s["dp"] / s["p_hertz"],
-                              "cells_per_indent_diameter": s["phi"] / s["grid"].dx})
+                              "cells_per_indent_diameter": s["phi"] / s["grid"].dx,
+                              "p_max_indented": float(s["dent"].pressure.max())})
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"ehl": ehl, "moes": moes, "hamrock_dowson": hamrock_dowson,
