@@ -71,7 +71,7 @@ def solve_smooth(s: Setup, tol: float, load_tol: float):
     return sol, mg
 
 
-def snapshot_steps(steps: int, kept: int = 32) -> set[int]:
+def snapshot_steps(steps: int, kept: int = 16) -> set[int]:
     every = max(1, int(np.ceil(steps / kept)))
     return set(range(every, steps + 1, every)) | {steps}
 
