@@ -82,6 +82,21 @@ def test_indent_outside_domain_gives_smooth_solution():
     assert np.abs(mg.fine.P - sol.P).max() < 1e-9
 
 
+def test_steady_groove_opens_the_film():
+    """A stationary longitudinal groove (eq 2.45, Phi = 0.5, D = 0.1) in the steady solver: the groove deepens the
+    film at the centre (by 40 % of its depth here: the rest is flattened elastically) and lowers the pressure there (the indent sign of eq 2.4 as corrected:
+    H = ... - Rbar, Rbar the surface height)."""
+    s = setup(100, 10, x=(-2.5, 1.5))
+    smooth, _ = steady.solve(s.prob, s.n, s.levels, tol=1e-8, load_tol=1e-8)
+    groove = Indent(0.5, 0.1, 4.0, shape="groove")
+    sol, _ = steady.solve(dataclasses.replace(s.prob, indent=groove), s.n, s.levels, tol=1e-8, load_tol=1e-8)
+    i0, j0 = int(np.argmin(np.abs(sol.x))), int(np.argmin(np.abs(sol.y)))
+    assert sol.H[i0, j0] - smooth.H[i0, j0] > 0.2 * groove.depth       # partly flattened elastically
+    assert sol.P[i0, j0] < smooth.P[i0, j0] - 0.05
+    assert sol.load_error <= 1e-6
+
+
+@pytest.mark.slow
 def test_indent_march_keeps_load_balance_and_opens_the_gap():
     """An indent (Phi = 1, D/Phi = 1/4, K = 4) marched from X_D = -1 to the centre (16 steps, 65^2): load balance
     at every step, the hole opens the film by about its depth (the indent sign of eq 2.4 as corrected), the
