@@ -77,7 +77,8 @@ def run(params: dict[str, Any], progress=None) -> ModelResult:
         tl = time.perf_counter()
         if indent:
             c = model.crossing(s, {"diameter": params["indent.diameter"], "slope": params["indent.slope"],
-                                   "decay": params["indent.decay"]}, params["kinematics.slide_roll"], tol, load_tol)
+                                   "decay": params["indent.decay"]}, params["kinematics.slide_roll"], tol, load_tol,
+                                snapshots=params["numerics.snapshots"])
             sol = c["final"]
             # film quantities of the smooth contact; the indent's effect is in the additional pressures
             q = model.film_quantities(s, c["smooth"])

@@ -63,6 +63,8 @@ SCHEMA: dict[str, Key] = {
                             hi_closed=True),
     "numerics.x_end": Key("float", "b", "outlet end of the domain / b (the domain is square)", lo=1.2, hi=4.0,
                           lo_closed=True, hi_closed=True),
+    "numerics.snapshots": Key("int", "-", "pressure fields kept per crossing (evenly spaced steps, the last at X_D = 0)",
+                              lo=1, hi=10000, lo_closed=True, hi_closed=True),
     "numerics.tol": Key("float", "-", "mean scaled residual per solve", lo=0.0, hi=1e-4, hi_closed=True),
     "numerics.load_tol": Key("float", "-", "relative load error per solve (and per time step)", lo=0.0,
                              hi=1e-6, hi_closed=True),
@@ -85,6 +87,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.x_start": -4.5,
     "numerics.x_end": 1.5,
     "numerics.tol": 1e-7,
+    "numerics.snapshots": 16,
     "numerics.load_tol": 1e-7,
     "numerics.bem_cells": 193,
 }
@@ -92,6 +95,7 @@ REQUIRED = ("geometry.Rx", "geometry.Ry", "lubricant.viscosity", "lubricant.pres
 DEPENDS: dict[str, dict] = {
     "ehl": {"params": ("geometry.", "load.", "materials.", "lubricant.", "kinematics.", "ehl.", "indent.",
                        "numerics.grid", "numerics.levels", "numerics.refinements", "numerics.x_", "numerics.tol",
+                       "numerics.snapshots",
                        "numerics.load_tol"),
             "reference": True},
 }
