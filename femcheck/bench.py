@@ -51,7 +51,7 @@ def _bench_case(args: tuple[Scene, str, dict[str, Any], Any]) -> dict[str, Any]:
         row["err_pressure_profile_l2"] = errs["pressure_profile_l2"]
     st = res.stats
     row["size"] = (st.get("n_elements") or (st["nx"] * st["ny"] if "nx" in st else None)
-                   or (st["levels"][-1]["n_dofs"] if "levels" in st else None))
+                   or (st["levels"][-1].get("n_dofs") if "levels" in st else None))
     row["iterations"] = st.get("iterations") or (st["levels"][-1]["iterations"] if "levels" in st else None)
     return row
 

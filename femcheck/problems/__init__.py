@@ -10,10 +10,18 @@ from types import ModuleType
 
 from ..errors import InputError
 
-KINDS = {"line_contact": "line_contact", "point_contact": "point_contact", "roller_contact": "roller_contact",
-         "indent_contact": "indent_contact", "srb_contact": "srb_contact",
-         "line_tangential": "line_tangential", "point_tangential": "point_tangential",
-         "layer_contact": "layer_contact", "bearing_load": "bearing_load"}
+KINDS = {   # one kind per line: each new kind adds one line
+    "line_contact": "line_contact",
+    "point_contact": "point_contact",
+    "roller_contact": "roller_contact",
+    "indent_contact": "indent_contact",
+    "srb_contact": "srb_contact",
+    "line_tangential": "line_tangential",
+    "point_tangential": "point_tangential",
+    "layer_contact": "layer_contact",
+    "bearing_load": "bearing_load",
+    "ehl_contact": "ehl_contact",
+}
 
 
 def problem(kind: str) -> ModuleType:

@@ -1,0 +1,111 @@
+"""The EHL model of the ``ehl_contact`` kind: physical or Moes inputs -> dimensionless problem -> steady smooth
+solution (with grid refinement and a convergence certificate) and, with an indent, the transient crossing up to
+the centred position (spec §A.5: the indent enters at the inlet, X_D0 = X_a - Phi, and the result is taken at
+X_D = 0). Outputs in SI; the pressure field on the grid and per kept time step for the fatigue-life model."""
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import ConvergenceError
+from . import formulas, groups, outputs, steady, transient
+from .film import Indent
+from .lubricant import Lubricant
+from .multigrid import Problem
+
+
+@dataclass(frozen=True)
+class Setup:
+    """Everything a run needs: groups (SI <-> dimensionless), the dimensionless problem, the grid."""
+
+    g: groups.Groups
+    prob: Problem
+    n: int
+    levels: int
+
+
+def h0_factor(M: float, L: float) -> float:
+    """Venner's H0 relaxation factor for W-cycles: 0.1, x 0.25 when L > 10 or M > 1000."""
+    return 0.1 * (0.25 if (L > 10 or M > 1000) else 1.0)
+
+
+def make_setup(g: groups.Groups, viscosity_law: str, density_law: str, grid: int, levels: int | None,
+               x_start: float, x_end: float, indent: Indent | None = None) -> Setup:
+    n = grid - 1
+    if levels is None:
+        levels = int(np.log2(n // 16)) + 1        # coarsest grid: 16 intervals
+    lub = Lubricant(viscosity_law, density_law, g.eta0, g.alpha, g.p_hertz)
+    # first guess of H0: the Nijenbanning central film minus the Hertzian central deflection
+    hc = formulas.moes_central(g.M, g.L, g.Rx / g.Ry) * np.sqrt(g.U_moes) * g.Rx**2 / g.b**2
+    prob = Problem(lub, g.lam, g.c_el, g.Rx / g.Ry, g.kappa, x_start, x_end, indent, h0_factor(g.M, g.L), hc)
+    return Setup(g, prob, n, levels)
+
+
+def check_film(sol: steady.Solution, what: str) -> None:
+    """A converged discrete solution with a negative film in the pressurised zone is under-resolved, not a film:
+    refuse it rather than report it."""
+    pos = sol.P > 0
+    if pos.any() and sol.H[pos].min() <= 0:
+        raise ConvergenceError(what, sol.cycles, sol.residual, 0.0,
+                               f"negative film H_min = {sol.H[pos].min():.3g} in the pressurised zone: the grid "
+                               "does not resolve this (M, L); use a finer numerics.grid")
+
+
+def film_quantities(s: Setup, sol: steady.Solution) -> dict[str, float]:
+    g = s.g
+    m = outputs.film_measures(sol.x, sol.y, sol.P, sol.H)
+    return {"h_central": g.film_to_m(m["H_central"]), "h_min": g.film_to_m(m["H_min"]),
+            "p_max": m["P_max"] * g.p_hertz, "H_central_moes": g.moes_film(m["H_central"]),
+            "H_min_moes": g.moes_film(m["H_min"]), "load_error": sol.load_error,
+            "spike_x": m["X_spike"] * g.b}
+
+
+def solve_smooth(s: Setup, tol: float, load_tol: float):
+    prob = dataclasses.replace(s.prob, indent=None)
+    sol, mg = steady.solve(prob, s.n, s.levels, tol=tol, load_tol=load_tol)
+    check_film(sol, f"EHL steady ({s.n + 1}^2 nodes)")
+    return sol, mg
+
+
+def snapshot_steps(steps: int, kept: int = 16) -> set[int]:
+    every = max(1, int(np.ceil(steps / kept)))
+    return set(range(every, steps + 1, every)) | {steps}
+
+
+def crossing(s: Setup, indent_keys: dict[str, float], slide_roll: float, tol: float, load_tol: float,
+             progress=None, snapshots: int = 16) -> dict[str, Any]:
+    """Smooth steady solution, then the indent (Phi, D/Phi, K) enters at the inlet and is marched to X_D = 0.
+
+    Returns the smooth solution, the history (per step: T, X_D, dP amplitudes, load error, cycles) and the kept
+    pressure snapshots (``snapshots`` evenly spaced steps, the last at X_D = 0)."""
+    t0 = time.perf_counter()
+    phi, slope, K = indent_keys["diameter"], indent_keys["slope"], indent_keys["decay"]
+    smooth, mg = solve_smooth(s, tol, load_tol)
+    h = mg.fine.h
+    speed = 1.0 + slide_roll
+    steps = int(np.ceil((phi - s.prob.x_start) / (speed * h)))
+    ind = Indent(phi, slope * phi, K, x0=-steps * speed * h, speed_ratio=speed)
+    mg.prob = dataclasses.replace(s.prob, indent=ind)
+    mg.set_time(0.0)
+    transient.start(mg)
+    amps: dict[str, list[float]] = {k: [] for k in ("front", "rear", "lateral", "centre", "amplitude")}
+    kept = snapshot_steps(steps, snapshots)
+    lv = mg.fine
+
+    def on_step(msg):
+        a = outputs.additional_pressure(lv.film.x, lv.film.y, lv.P - smooth.P, ind.centre(mg.T), 0.0, phi)
+        for k in amps:
+            amps[k].append(a[k])
+        if progress:
+            progress(msg)
+
+    hist = transient.march(mg, steps, tol=tol, load_tol=load_tol, keep=lambda k, T: k in kept, progress=on_step,
+                           base=smooth.P)
+    final = hist.snapshots[-1]
+    check_film(final, f"EHL transient ({s.n + 1}^2 nodes) at X_D = 0")
+    return {"smooth": smooth, "history": hist, "amplitudes": amps, "indent": ind, "final": final, "steps": steps,
+            "time_s": time.perf_counter() - t0}

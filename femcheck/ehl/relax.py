@@ -1,0 +1,109 @@
+"""Line relaxation of the EHL Reynolds equation (seed 004 §2.6.2 eqs 2.39-2.44, App. A.7-A.13 cleaned in the
+spec §A.5; Venner & Lubrecht 2000 ch. 17).
+
+Lines run along X, the direction of the strong coupling. Per node the row type follows the largest face
+coefficient xi = max eps_face/h^2:
+- xi > 0.3 (inlet, outlet: Poiseuille-dominated) or a node whose 5-point star is not pressurised: a
+  Gauss-Seidel row, P <- P + 0.4 delta;
+- otherwise (high-pressure zone, where the film is almost rigid in P): a distributive Jacobi row, P_ij += 0.2 delta
+  and each of the four neighbours -= 0.2 delta/4, which makes the change nearly film-neutral.
+The line matrix is the derivative of Q - W with respect to the line's unknowns, with the elastic film coupling
+of the six nearest line points (i-3 ... i+2) through the cell kernel K_{m,0} (Gauss-Seidel rows) or the
+distributed kernel dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 (Jacobi rows). Rows whose points
+i-2 ... i+2 are not all pressurised keep the diagonal only (cavitation boundary). Cavitation: P >= 0 after every
+update (Reynolds / Swift-Stieber condition by complementarity).
+
+Vectorised by zebra ordering: all lines of one parity are solved together as one banded system (lines do not
+couple inside a colour, so the stacked matrix keeps bandwidth (3, 2)), then the film is recomputed and the other
+parity follows with the latest values.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import solve_banded
+
+from .reynolds import operator, time_weights
+
+XI_LIMIT = 0.3
+OMEGA_GS = 0.4
+OMEGA_JA = 0.3
+
+
+def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:
+    """dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 for m = 0 .. len(K0) - 2 (A.10)."""
+    m = np.arange(K0.size - 1)
+    return K0[m] - 0.25 * (K0[m + 1] + K0[np.abs(m - 1)] + 2.0 * K1[m])
+
+
+def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None, r1, r2, c_el: float,
+                 K0: np.ndarray, K1: np.ndarray, colour: int) -> None:
+    """One line relaxation of the lines j = colour, colour + 2, ... (interior), P updated in place.
+
+    ``state(P)`` returns (H, rho, eps, r) on the full grid for the current P."""
+    n = P.shape[0] - 1
+    ni = n - 1
+    J = np.arange(2 - colour, n, 2)          # colour 1: odd lines, colour 0: even lines
+    if J.size == 0:
+        return
+    H, rho, eps, r = state(P)
+    res = f - operator(P, eps, r, r1, r2, h, ht)
+    ij = (slice(1, n), J)
+    s = 0.5 / (h * h)
+    eE = ((eps[1:n, J] + eps[2:n + 1, J]) * s).T
+    eW = ((eps[1:n, J] + eps[0:n - 1, J]) * s).T
+    eN = ((eps[1:n, J] + eps[1:n, J + 1]) * s).T
+    eS = ((eps[1:n, J] + eps[1:n, J - 1]) * s).T
+    S = eE + eW + eN + eS
+    xi = np.maximum(np.maximum(eE, eW), np.maximum(eN, eS))
+    pos = P > 0
+    star = (pos[1:n, J] & pos[2:n + 1, J] & pos[0:n - 1, J] & pos[1:n, J + 1] & pos[1:n, J - 1]).T
+    ja = (xi <= XI_LIMIT) & star
+    # rows i-2 .. i+2 pressurised (points outside the grid count as not pressurised)
+    padded = np.zeros((n + 5, J.size), dtype=bool)
+    padded[2:n + 3] = pos[:, J]
+    band = np.ones((ni, J.size), dtype=bool)
+    for m in range(-2, 3):
+        band &= padded[3 + m:3 + m + ni]        # padded index of node i + m is i + m + 2
+    band = band.T
+    rho_t = rho[:, J].T                       # (lines, n + 1)
+    ri = rho_t[:, 1:n]
+    rim1 = rho_t[:, 0:n - 1]
+    rim2 = np.concatenate([np.zeros((J.size, 1)), rho_t[:, 0:n - 2]], axis=1)
+    first = np.zeros(ni)
+    first[0] = 1.0
+    a0 = 1.5 - 0.5 * first
+    a1 = -2.0 + first
+    a2 = 0.5 - 0.5 * first
+    wX, wD, wT = time_weights(h, ht)
+    dK = distributed_kernel(K0, K1)
+    Kr = [np.where(ja, dK[k], K0[k]) for k in range(5)]
+    local = (wX + wD) * a0 + wT * 1.5           # coefficient of r_i (new time level)
+
+    def dH(m: int) -> np.ndarray:
+        out = local * ri * Kr[abs(m)] + wX * (a1 * rim1 * Kr[abs(m + 1)] + a2 * rim2 * Kr[abs(m + 2)])
+        return c_el * out
+
+    pois = {-2: np.where(ja, -0.25 * eW, 0.0), -1: np.where(ja, eW + 0.25 * S, eW), 0: np.where(ja, -1.25 * S, -S),
+            1: np.where(ja, eE + 0.25 * S, eE), 2: np.where(ja, -0.25 * eE, 0.0), -3: 0.0}
+    N = J.size * ni
+    ab = np.zeros((6, N))
+    ii = np.arange(ni)
+    for m in range(-3, 3):
+        A = pois[m] - dH(m)
+        inside = (ii + m >= 0) & (ii + m < ni)
+        A = np.where(inside & (band | (m == 0)), A, 0.0).ravel()
+        if m >= 0:
+            ab[2 - m, m:N] = A[0:N - m]
+        else:
+            ab[2 - m, 0:N + m] = A[-m:N]
+    delta = solve_banded((3, 2), ab, res[ij].T.ravel(), check_finite=False).reshape(J.size, ni)
+    upd = np.where(~ja, OMEGA_GS * delta, OMEGA_JA * delta)
+    P[ij] += upd.T
+    dj = np.where(ja, 0.25 * OMEGA_JA * delta, 0.0).T      # distribution to the four neighbours
+    if dj.any():
+        P[0:n - 1, J] -= dj
+        P[2:n + 1, J] -= dj
+        P[1:n, J - 1] -= dj
+        P[1:n, J + 1] -= dj
+    np.maximum(P, 0.0, out=P)
+    P[0, :] = P[-1, :] = P[:, 0] = P[:, -1] = 0.0
