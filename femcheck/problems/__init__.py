@@ -1,30 +1,23 @@
 """Problem kinds: each module declares its scene schema (SCHEMA, DEFAULTS, REQUIRED), cross-key checks
 (``validate``) and its models (MODELS: name -> function(scene, progress) -> ModelResult).
 
-A scene's ``kind`` selects the module; adding a kind means adding a module here and listing it below.
+A scene's ``kind`` is the name of a module of this package; adding a kind means adding a module here, nothing
+else (the kinds are found by listing the package, so this file, which every model's key covers, never changes
+when a kind is added).
 """
 from __future__ import annotations
 
+import pkgutil
 from importlib import import_module
+from pathlib import Path
 from types import ModuleType
 
 from ..errors import InputError
 
-KINDS = {   # one kind per line: each new kind adds one line
-    "line_contact": "line_contact",
-    "point_contact": "point_contact",
-    "roller_contact": "roller_contact",
-    "indent_contact": "indent_contact",
-    "srb_contact": "srb_contact",
-    "line_tangential": "line_tangential",
-    "point_tangential": "point_tangential",
-    "layer_contact": "layer_contact",
-    "bearing_load": "bearing_load",
-    "ehl_contact": "ehl_contact",
-}
+KINDS = tuple(sorted(m.name for m in pkgutil.iter_modules([str(Path(__file__).parent)]) if not m.ispkg))
 
 
 def problem(kind: str) -> ModuleType:
     if kind not in KINDS:
-        raise InputError("kind", f"{kind!r} is not a problem kind; allowed: {', '.join(sorted(KINDS))}")
-    return import_module(f"{__name__}.{KINDS[kind]}")
+        raise InputError("kind", f"{kind!r} is not a problem kind; allowed: {', '.join(KINDS)}")
+    return import_module(f"{__name__}.{kind}")
