@@ -43,10 +43,12 @@ def progress_bar(total: int | None, description: str) -> Iterator:
         yield advance
 
 
-def _scene(name: str, sets: list[str] | None):
-    from .scene import load_scene, parse_overrides
+def _scene(name: str, sets: list[str] | None, models: str | None = None):
+    """The validated scene; ``--models`` replaces ``models.run`` before validation."""
+    from .runner import resolve_scene
+    from .scene import parse_overrides
 
-    return load_scene(name, parse_overrides(sets or []))
+    return resolve_scene(name, parse_overrides(sets or []), _models(models))
 
 
 def _models(models: str | None) -> list[str] | None:
@@ -120,11 +122,11 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     """Run one scene and compare its models."""
     from .runner import run
 
-    sc = _scene(scene, set_)
+    sc = _scene(scene, set_, models)
     t0 = time.perf_counter()
     with progress_bar(None, sc.name) as advance:
         # a scene as shipped (no --set) is stored as a reference; one-off variations only go to the cache
-        res = run(sc, models=_models(models), rebuild=rebuild, progress=advance, store_references=not set_)
+        res = run(sc, rebuild=rebuild, progress=advance, store_references=not set_)
     if out is not None:
         from .report.html import write_report
 
@@ -265,7 +267,7 @@ def map_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     from .report.html import write_map_report
     from .validity_map import parse_axis, validity_map
 
-    sc = _scene(scene, set_)
+    sc = _scene(scene, set_, models)
     ax, ay = parse_axis("--x", x, sc), parse_axis("--y", y, sc)
     names = _models(models)
     out = out or Path("reports") / f"map-{sc.name}"

@@ -17,10 +17,21 @@ from .scene import Scene, load_scene
 Progress = Callable[[str], None]
 
 
-def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = None) -> Scene:
-    if isinstance(scene, Scene):
-        return scene.with_overrides(overrides) if overrides else scene
-    return load_scene(scene, overrides)
+def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = None,
+                  models: list[str] | None = None) -> Scene:
+    """The validated scene with ``overrides``; ``models`` (the ``--models`` option) replaces ``models.run``
+    *before* validation, so a scene whose ``models.run`` lists a model the overrides make inapplicable (e.g.
+    uncoated Hertz on a rigid substrate) runs with the models asked for."""
+    if models:
+        overrides = {**(overrides or {}), "models.run": list(models)}
+    try:
+        if isinstance(scene, Scene):
+            return scene.with_overrides(overrides) if overrides else scene
+        return load_scene(scene, overrides)
+    except InputError as err:
+        if models and err.key == "models.run":        # the user typed --models, not models.run
+            raise InputError("--models", str(err).partition(": ")[2]) from None
+        raise
 
 
 def _store_reference(scene: Scene, name: str, key: str, res: ModelResult, dep: dict) -> None:
@@ -83,17 +94,16 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
 def run(scene: Scene | str | Path, overrides: dict[str, Any] | None = None, models: list[str] | None = None,
         use_cache: bool = True, rebuild: bool = False, progress: Progress | None = None,
         store_references: bool = False) -> RunResult:
-    """Run ``models`` (default: the scene's ``models.run``) and compare them with the scene's references."""
-    sc = resolve_scene(scene, overrides)
+    """Run ``models`` (default: the scene's ``models.run``; see :func:`resolve_scene`) and compare them with
+    the scene's references."""
+    sc = resolve_scene(scene, overrides, models)
     prob = problem(sc.kind)
-    names = list(models) if models else list(sc["models.run"])
-    for n in names:
-        if n not in prob.MODELS:
-            raise InputError("--models", f"{n!r} is not a model of {sc.kind}; allowed: {', '.join(prob.MODELS)}")
+    names = list(sc["models.run"])
     results = {}
     for n in names:
         if progress:
             progress(f"{sc.name}: {n}")
         results[n] = run_model(sc, n, use_cache, rebuild, progress, store_references)
-    comparisons = compare(sc, results, prob.profile_scale(sc))
-    return RunResult(sc.name, dict(sc.params), results, comparisons, sc.kind, sc.description)
+    singular = prob.singular_quantities(sc) if hasattr(prob, "singular_quantities") else ()
+    comparisons, not_compared = compare(sc, results, prob.profile_scale(sc), singular)
+    return RunResult(sc.name, dict(sc.params), results, comparisons, sc.kind, sc.description, not_compared)

@@ -42,9 +42,13 @@ def test_run_json_schema(run_json):
         assert {"quantities", "stats"} <= set(m)
     assert {"p_max", "half_width", "von_mises_max", "von_mises_max_depth", "tau_max", "tau_xz_max"} \
         <= set(d["models"]["analytic"]["quantities"])
-    keys = {"quantity", "model", "reference", "value", "reference_value", "rel_error", "tolerance", "pass"}
+    keys = {"quantity", "model", "reference", "value", "reference_value", "rel_error", "tolerance", "pass",
+            "verdict", "contrast", "note"}
     assert d["comparisons"] and all(set(c) == keys for c in d["comparisons"])
-    assert all(c["pass"] for c in d["comparisons"] if c["tolerance"] is not None)
+    # every comparison graded; no candidate out of tolerance; pass only when valid
+    assert all(c["tolerance"] is not None for c in d["comparisons"])
+    assert all(c["verdict"] != "not valid here" for c in d["comparisons"])
+    assert all(c["pass"] == (c["verdict"] == "valid") for c in d["comparisons"])
     pairs = {(c["model"], c["reference"]) for c in d["comparisons"]}
     assert {("bem", "analytic"), ("bem", "fem"), ("fem", "analytic"), ("fem@finest", "analytic")} <= pairs
 

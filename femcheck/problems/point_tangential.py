@@ -32,7 +32,7 @@ from ..cect.influence import combined_constants
 from ..errors import InputError
 from ..qoi import ellipse_fit
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "strip")
 ROLLING_ONLY = ("linear", "fastsim", "full_slip", "strip")
@@ -56,9 +56,7 @@ SCHEMA: dict[str, Key] = {
     "kinematics.phi": Key("float", "1/m", "spin creepage", lo=-1e4, hi=1e4, lo_closed=True, hi_closed=True),
     "kinematics.speed": Key("float", "m/s", "rolling speed V (scales slip velocities and frictional power)",
                             lo=0.0),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against",
-                             choices=("analytic", "exact")),
+    **model_keys(MODEL_NAMES),
     "numerics.exact_cells": Key("int", "-", "exact solver: elements per axis of the potential contact grid "
                                 f"(dense solver: at most {MAX_DENSE_CELLS})", lo=9, hi=513, lo_closed=True,
                                 hi_closed=True),
