@@ -176,7 +176,7 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
               scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
     """Time-vs-error sweep of each model's discretisation: table, bench.json, bench.csv, log-log plot."""
     from .bench import bench, scaling_exponent
-    from .report import plots
+    from .report import charts
     from .report.html import AtomicDir
 
     sc = _scene(scene, set_)
@@ -208,7 +208,7 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         lines = [",".join(cols)] + [",".join(json.dumps(r.get(c, "")).replace(",", ";") for c in cols)
                                     for r in rows]
         (tmp / "bench.csv").write_text("\n".join(lines) + "\n")
-        plots.time_error(rows, tmp / "bench.png", f"{sc.name}: run time vs error")
+        charts.time_error(rows, tmp / "bench.png", f"{sc.name}: run time vs error")
     for m, e in exps.items():
         if e is not None:
             out_console.print(f"{m}: time ~ size^{e:.2f}")

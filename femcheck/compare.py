@@ -66,7 +66,9 @@ def certificates(res: ModelResult | None) -> dict[str, dict]:
 def _own_certificates(stats: dict) -> dict[str, dict]:
     if "certificates" in stats:
         return dict(stats["certificates"] or {})
-    return {q: {"certified": e.get("order") is not None, "value": e.get("value"),
+    return {q: {"certified": e.get("order") is not None, "value": e.get("value"), "finest": e.get("finest"),
+                "order": e.get("order"),
+                "error_estimate": abs(e["error_estimate"] / e["value"]) if e.get("value") else None,
                 "note": "stats without a certificate; " + ("Richardson order %.2f" % e["order"]
                                                            if e.get("order") is not None else
                                                            "Richardson found no observed order")}
