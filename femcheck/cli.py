@@ -14,7 +14,8 @@ from typing import Iterator, List, Optional
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn,
+                           TimeElapsedColumn)
 from rich.table import Table
 
 from .errors import InputError
@@ -31,15 +32,17 @@ err_console = Console(stderr=True)
 
 @contextmanager
 def progress_bar(total: int | None, description: str) -> Iterator:
-    """A rich progress bar on stderr (silent when stderr is not a terminal). Yields advance(text)."""
-    prog = Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), TimeElapsedColumn(),
-                    console=err_console, transient=True, disable=not err_console.is_terminal)
+    """A rich progress bar on stderr (silent when stderr is not a terminal). Yields advance(text); its
+    ``log(line)`` prints a line above the bar (and to stderr when it is not a terminal)."""
+    prog = Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                    TimeElapsedColumn(), console=err_console, transient=True, disable=not err_console.is_terminal)
     with prog:
         task = prog.add_task(description, total=total)
 
         def advance(text: str = "", step: int = 1) -> None:
             prog.update(task, advance=step, description=text or description)
 
+        advance.log = prog.console.print
         yield advance
 
 
@@ -62,6 +65,16 @@ def _write_json(path: Path, data) -> None:
         (tmp / path.name).write_text(json.dumps(data, indent=1))
 
 
+VERDICT_STYLE = {"valid": "green", "contrast": "dim", "not valid here": "red", "reference uncertified": "yellow",
+                 "ungraded": "magenta", "failed": "bold red", "skipped": "dim", "reference": "blue",
+                 "not compared": "blue"}
+
+
+def _verdict(v: str, contrast: bool = False) -> str:
+    text = v + (" (contrast)" if contrast and v == "not valid here" else "")
+    return f"[{VERDICT_STYLE.get(v, 'white')}]{text}[/]"
+
+
 def _print_run(res) -> None:
     t = Table(title=f"{res.scene}: models")
     for col in ("model", "status", "time (s)", "quantities", "note"):
@@ -70,14 +83,38 @@ def _print_run(res) -> None:
         q = "  ".join(f"{k}={v:.5g}" for k, v in m.quantities.items())
         t.add_row(name, m.status + (" (cached)" if m.cached else ""), f"{m.time_s:.3f}", q, m.error or "")
     out_console.print(t)
+    if not res.comparisons:
+        refs = ", ".join(res.params.get("models.references", ()))
+        out_console.print(f"nothing compared: no reference ran (models.references: {refs})")
+        return
     c = Table(title="comparisons")
-    for col in ("model", "reference", "quantity", "rel. error", "tolerance", "result"):
+    for col in ("model", "reference", "quantity", "rel. error", "tolerance", "verdict", "note"):
         c.add_column(col)
     for cmp in res.comparisons:
-        verdict = "-" if cmp.passed is None else ("[green]pass[/]" if cmp.passed else "[red]FAIL[/]")
-        tol = "-" if cmp.tolerance is None else f"{cmp.tolerance:.2%}"
-        c.add_row(cmp.model, cmp.reference, cmp.quantity, f"{cmp.rel_error:.3%}", tol, verdict)
+        tol = "-" if cmp.tolerance is None else f"{cmp.tolerance:.3g}"
+        c.add_row(cmp.model, cmp.reference, cmp.quantity, f"{cmp.rel_error:.3g}", tol,
+                  _verdict(cmp.verdict, cmp.contrast), cmp.note)
     out_console.print(c)
+    for p in res.problems:
+        out_console.print(f"[red]{res.scene}: {p}[/]")
+
+
+def _print_dashboard(runs) -> None:
+    """The suite's validity dashboard: one row per scene and model (the report's table)."""
+    from .report.dashboard import rows
+
+    t = Table(title="validity: worst comparison of each model against each reference")
+    for col in ("scene", "model", "role", "worst error / tolerance", "verdict", "run time"):
+        t.add_column(col)
+    for run in runs:
+        for i, r in enumerate(rows(run)):
+            worst = "; ".join(f"{c.reference}: {c.rel_error:.2g} {c.quantity} (tol {c.tolerance:.2g})"
+                              if c.tolerance is not None else f"{c.reference}: {c.rel_error:.2g} {c.quantity}"
+                              for c in r.per_reference)
+            scene = (f"{run.scene} " + ("[green]PASS[/]" if run.passed else "[red]FAIL[/]")) if i == 0 else ""
+            t.add_row(scene, r.model, r.role, worst or r.note, _verdict(r.verdict, r.role == "contrast"),
+                      r.time_text, end_section=i == len(run.models) - 1)
+    out_console.print(t)
 
 
 @app.command("list")
@@ -160,12 +197,15 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
             runs.append(run(sc, rebuild=rebuild, progress=lambda text: advance(text, 0), store_references=True))
             advance(sc.name)
     index = write_report(runs, out, name, time.perf_counter() - t0)
-    for r in runs:
-        _print_run(r)
-    ok = all(r.passed for r in runs)
-    out_console.print(f"{'PASS' if ok else 'FAIL'}: {len(runs)} scene(s) in {time.perf_counter() - t0:.1f} s; "
-                      f"report {index}")
-    raise typer.Exit(0 if ok else 1)
+    _print_dashboard(runs)
+    failed = [r for r in runs if not r.passed]
+    for r in failed:
+        for p in r.problems:
+            out_console.print(f"[red]{r.scene}: {p}[/]")
+    verdict = "PASS" if not failed else f"FAIL: {len(failed)} of {len(runs)} scene(s) failed " \
+        f"({', '.join(r.scene for r in failed)})"
+    out_console.print(f"{verdict}; {len(runs)} scene(s) in {time.perf_counter() - t0:.1f} s; report {index}")
+    raise typer.Exit(0 if not failed else 1)
 
 
 @app.command("bench")
@@ -220,35 +260,58 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
 @app.command("stress")
 def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
                set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override"),
+               models: Optional[str] = typer.Option(None, "--models", help="comma-separated models (default: "
+                                                     "models.run without the FE references)"),
                workers: Optional[int] = typer.Option(None, "--workers", help="worker processes"),
                out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/stress-SCENE)"),
                scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
-    """Stability sweep over parameter extremes; lists every case that failed, was non-physical or inaccurate."""
+    """Stability sweep over parameter extremes; lists every case that failed, was non-physical, inaccurate or
+    compared with nothing. FE references run only when --models names them (minutes and GB per case)."""
     from .problems import problem
     from .report.html import AtomicDir
-    from .stability import stress
+    from .stability import default_models, stress
 
-    sc = _scene(scene, set_)
+    sc = _scene(scene, set_, models)
+    names = _models(models) or default_models(sc)
     out = out or Path("reports") / f"stress-{sc.name}"
-    n = len(problem(sc.kind).stress_cases(sc))
+    prob = problem(sc.kind)
+    n = len(prob.stress_cases(sc))
+    left_out = [m for m in sc["models.run"] if m not in names]
+    out_console.print(f"stress {sc.name}: {n} cases, models {', '.join(names)}"
+                      + (f" (left out: {', '.join(left_out)}; --models to add them)" if left_out else ""))
+    first = getattr(prob, "STRESS_QUANTITIES", ("p_max",))[0]
+    done = [0]
     with progress_bar(n, f"stress {sc.name}") as advance:
-        cases = stress(sc, workers, on_done=lambda i, c: advance(c.label), scheduler=scheduler)
+        def on_done(i, c):
+            done[0] += 1
+            colour = {"ok": "green", "refused": "yellow", "unchecked": "yellow"}.get(c.status, "red")
+            t = sum(m.get("time_s", 0.0) for m in c.models.values())
+            errs = ", ".join(f"{m} {first} {v['err_' + first]:.1e}" for m, v in c.models.items()
+                             if "err_" + first in v)
+            advance.log(f"[{done[0]:>{len(str(n))}}/{n}] {c.label}: [{colour}]{c.status}[/] ({t:.2f} s)"
+                        + (f" {errs}" if errs else "") + (f" - {'; '.join(c.problems)}" if c.problems else ""))
+            advance(c.label)
+
+        cases = stress(sc, workers, on_done=on_done, scheduler=scheduler, models=names)
     t = Table(title=f"{sc.name}: stability sweep ({len(cases)} cases)")
-    models = sorted({m for c in cases for m in c.models})
-    first = getattr(problem(sc.kind), "STRESS_QUANTITIES", ("p_max",))[0]
-    for col in ["case", "status"] + [f"{m} {first} err" for m in models] + ["problems"]:
+    shown = sorted({m for c in cases for m in c.models})
+    for col in ["case", "status"] + [f"{m} {first} err" for m in shown] + ["problems"]:
         t.add_column(col)
     for c in cases:
-        colour = {"ok": "green", "refused": "yellow"}.get(c.status, "red")
+        colour = {"ok": "green", "refused": "yellow", "unchecked": "yellow"}.get(c.status, "red")
         errs = [f"{c.models[m]['err_' + first]:.1e}" if "err_" + first in c.models.get(m, {}) else
-                c.models.get(m, {}).get("status", "-") for m in models]
+                c.models.get(m, {}).get("status", "-") for m in shown]
         t.add_row(c.label, f"[{colour}]{c.status}[/]", *errs, "; ".join(c.problems))
     out_console.print(t)
     bad = [c for c in cases if c.status in ("failed", "inaccurate")]
+    unchecked = [c for c in cases if c.status == "unchecked"]
     with AtomicDir(out) as tmp:
-        (tmp / "stress.json").write_text(json.dumps({"scene": sc.name, "cases": [c.to_json() for c in cases],
-                                                    "failures": [c.label for c in bad]}, indent=1))
-    out_console.print(f"{len(bad)} of {len(cases)} cases failed or were inaccurate; written {out}/stress.json")
+        (tmp / "stress.json").write_text(json.dumps({"scene": sc.name, "models": names,
+                                                    "cases": [c.to_json() for c in cases],
+                                                    "failures": [c.label for c in bad],
+                                                    "unchecked": [c.label for c in unchecked]}, indent=1))
+    out_console.print(f"{len(bad)} of {len(cases)} cases failed or were inaccurate, {len(unchecked)} compared with "
+                      f"no reference; written {out}/stress.json")
     raise typer.Exit(1 if bad else 0)
 
 
@@ -305,11 +368,21 @@ def calibrate(scene: str = typer.Argument(..., help="scene whose kind has a cali
 
 
 def main() -> None:
+    import signal
+
+    from .executor import Interrupted, stop_on_signals
+
     try:
-        app()
+        with stop_on_signals((signal.SIGINT, signal.SIGTERM)):
+            app()
     except InputError as err:
         print(f"femcheck: error: {err}", file=sys.stderr)
         sys.exit(2)
+    except (Interrupted, KeyboardInterrupt) as err:
+        signum = getattr(err, "signum", signal.SIGINT)
+        print(f"femcheck: interrupted ({signal.Signals(signum).name}): stopped, workers ended, nothing written",
+              file=sys.stderr)
+        sys.exit(128 + signum)
 
 
 if __name__ == "__main__":

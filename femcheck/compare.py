@@ -13,7 +13,9 @@ Verdicts (:data:`femcheck.result.VERDICTS`). Every comparison is graded by ``tol
   this scene) is judged by the same key, its band: ``contrast`` within it, ``not valid here`` outside (shown,
   the scene does not fail);
 - against (or, between two references, from) a reference quantity whose convergence certificate
-  (``stats["certificates"][q]["certified"]``) is false: ``reference uncertified``, never a pass;
+  (``stats["certificates"][q]["certified"]``) is false: ``reference uncertified``, never a pass -- unless the
+  error exceeds the tolerance plus the certificate's own error estimate: then ``not valid here`` whatever the
+  reference's convergence;
 - no tolerance: ``ungraded``, an error of the scene (built-in scenes have none; a test checks it).
 
 What is not compared, and why:
@@ -107,27 +109,32 @@ class _Judge:
         done.append(value)
         return False
 
-    def uncertified(self, model: str, ref: str, quantity: str) -> str:
-        """The note of a certificate saying certified: false, on the reference side (or on the model side when
-        the model is a reference too); '' when none does."""
+    def uncertified(self, model: str, ref: str, quantity: str) -> tuple[str, float | None]:
+        """(note, relative error estimate) of a certificate saying certified: false, on the reference side (or
+        on the model side when the model is a reference too); ('', None) when none does."""
         sides = [ref] + ([model] if model in self.refs else [])
         for side in sides:
             cert = certificate(self.results.get(side), quantity)
             if cert is not None and cert.get("certified") is False:
-                return f"{side} {quantity} not certified: {cert.get('note', '')}".rstrip(": ")
-        return ""
+                note = f"{side} {quantity} not certified: {cert.get('note', '')}".rstrip(": ")
+                est = cert.get("error_estimate")
+                return note, (float(est) if est is not None and np.isfinite(est) else None)
+        return "", None
 
     def __call__(self, quantity: str, model: str, ref: str, value: float, ref_value: float,
                  rel: float) -> Comparison:
         base = model.partition("@")[0]
         tol = self.scene.get(f"tolerances.{model}.{quantity}")
         contrast = base in self.contrast
-        note = self.uncertified(base, ref, quantity) if base == model else \
-            self.uncertified("", ref, quantity)
+        note, est = self.uncertified(base if base == model else "", ref, quantity)
         if tol is None:
             given = [k.split(".", 2)[2] for k in self.scene.params if k.startswith(f"tolerances.{model}.")]
             verdict, note = "ungraded", (f"the scene gives no tolerances.{model}.{quantity}"
                                          f"{did_you_mean(quantity, given)}")
+        elif note and est is not None and rel > tol + est:
+            # beyond its tolerance by more than the reference's own error bound: wrong whatever the reference's
+            # certificate says
+            verdict, note = "not valid here", note + f"; the error exceeds tolerance + its error estimate {est:.2g}"
         elif note:
             verdict = "reference uncertified"
         elif rel <= tol:

@@ -130,11 +130,12 @@ def _jsonable(obj: Any) -> Any:
 @dataclass
 class StressCase:
     """One case of a stability sweep (:mod:`femcheck.stability`): the overrides it applies and, after the run,
-    its status (ok | failed | refused | inaccurate), per-model summaries and the problems found."""
+    its status (ok | failed | refused | inaccurate | unchecked: compared with no reference), per-model
+    summaries and the problems found."""
 
     label: str
     overrides: dict[str, Any]
-    status: str = "pending"          # ok | failed | refused | inaccurate
+    status: str = "pending"          # ok | failed | refused | inaccurate | unchecked
     models: dict[str, dict] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
 

@@ -74,6 +74,11 @@ def test_uncertified_reference_cannot_pass():
     assert v["p_max"].verdict == "reference uncertified" and v["p_max"].passed is False
     assert "oscillate" in v["p_max"].note
     assert v["half_width"].verdict == "valid"
+    # far beyond tolerance + the uncertified reference's own error estimate: not valid, whatever its certificate
+    comps, _ = compare(sc, {"bem": _res("bem", p_max=1.6, half_width=2.0001), "fem": fem}, 1.0)
+    assert {c.quantity: c.verdict for c in comps}["p_max"] == "not valid here"          # 0.6 > 0.5 + 0.03
+    comps, _ = compare(sc, {"bem": _res("bem", p_max=1.52, half_width=2.0001), "fem": fem}, 1.0)
+    assert {c.quantity: c.verdict for c in comps}["p_max"] == "reference uncertified"   # 0.52 <= 0.53
     # a stats dict from before certificates: a Richardson entry without an observed order is not certified
     fem.stats = {"richardson": {"p_max": {"value": 1.0, "order": None, "error_estimate": 0.0, "finest": 1.0}}}
     comps, _ = compare(sc, {"bem": bem, "fem": fem}, 1.0)
