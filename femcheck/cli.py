@@ -22,6 +22,20 @@ from .errors import InputError
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
                   help="Cross-check fast contact models against FEM references.")
+
+
+def _version(value: bool) -> None:
+    if value:
+        from . import __version__
+
+        print(f"femcheck {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _root(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="print the version and exit")) -> None:
+    """Cross-check fast contact models against FEM references."""
 out_console = Console()
 SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786) to run the cases on; "
                   "default: local processes (needs the dist extra)")
@@ -155,15 +169,20 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
             models: Optional[str] = typer.Option(None, "--models", help="comma-separated models"),
             out: Optional[Path] = typer.Option(None, "--out", help="write the report (index.html, summary.json, figures) here"),
             json_out: bool = typer.Option(False, "--json", help="print one JSON object"),
-            rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results")) -> None:
+            rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results"),
+            references: Optional[Path] = typer.Option(None, "--references", help="directory where the FE "
+                                                      "references of your scene are kept (read and written); "
+                                                      "without it they stay in the cache")) -> None:
     """Run one scene and compare its models."""
     from .runner import run
 
     sc = _scene(scene, set_, models)
     t0 = time.perf_counter()
     with progress_bar(None, sc.name) as advance:
-        # a scene as shipped (no --set) is stored as a reference; one-off variations only go to the cache
-        res = run(sc, rebuild=rebuild, progress=advance, store_references=not set_)
+        # a built-in scene as shipped (no --set) is stored with the package's references; a user's scene only in
+        # the directory the user names; one-off variations only go to the cache
+        store = references is not None or (sc.builtin and not set_)
+        res = run(sc, rebuild=rebuild, progress=advance, store_references=store, references_dir=references)
     if out is not None:
         from .report.html import write_report
 
@@ -187,8 +206,11 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
 
     scenes = [s for s in (load_scene(n) for n in builtin_scene_files()) if name in s.tags]
     if not scenes:
+        from .scene import did_you_mean
+
         tags = sorted({t for n in builtin_scene_files() for t in load_scene(n).tags})
-        raise InputError("suite", f"no scene is tagged {name!r}; allowed: {', '.join(tags)}")
+        raise InputError("suite", f"no scene is tagged {name!r}{did_you_mean(name, tags)}; allowed: "
+                                  f"{', '.join(tags)}")
     out = out or Path("reports") / name
     t0 = time.perf_counter()
     runs = []
@@ -359,6 +381,9 @@ def calibrate(scene: str = typer.Argument(..., help="scene whose kind has a cali
         raise InputError("scene", f"kind {sc.kind} has no calibrated model")
     with progress_bar(None, f"calibrate {sc.name}") as advance:
         data = prob.calibrate(sc, progress=advance)
+    if out is None and not sc.builtin:      # never write a user's calibration into the installed package
+        raise InputError("--out", f"{sc.source} is not a built-in scene: say where its calibration goes "
+                                  "(--out FILE)")
     target = out or prob.CALIBRATION_FILE
     _write_json(target, data)
     pv = data["provenance"]

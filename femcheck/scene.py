@@ -206,6 +206,12 @@ class Scene:
     def material(self, body: str) -> Elastic:
         return elastic(self.params, body)
 
+    @property
+    def builtin(self) -> bool:
+        """A scene shipped in femcheck/scenes (its references are stored with the package's)."""
+        path = builtin_scene_files().get(self.name)
+        return path is not None and bool(self.source) and Path(self.source).resolve() == path.resolve()
+
     def with_overrides(self, overrides: dict[str, Any]) -> "Scene":
         """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry), and setting
         one key of a group of alternatives (the kind's ``ALTERNATIVES``) removes the others."""
