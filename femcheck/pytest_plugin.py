@@ -11,6 +11,7 @@ disk by content hash (``FEMCHECK_CACHE``). A user's scene never writes into femc
 """
 from __future__ import annotations
 
+import inspect
 from pathlib import Path
 
 import pytest
@@ -31,22 +32,20 @@ def resolve_scene_path(scene, test_dir: Path):
 
 
 @pytest.fixture(scope="session")
-def _femcheck_results() -> dict:
-    return {}
-
-
-@pytest.fixture
-def femcheck_run(request, _femcheck_results):
+def femcheck_run():
+    """``run(scene, overrides=None, models=None)``, memoised for the session. A relative scene path is read from
+    the directory of the file whose code calls it (the test file, or the conftest / fixture that does)."""
     from .runner import run
 
-    test_dir = Path(str(request.node.fspath)).parent
+    memo: dict = {}
 
     def _run(scene, overrides: dict | None = None, models: list[str] | None = None):
-        scene = resolve_scene_path(scene, test_dir)
+        caller = Path(inspect.stack(context=0)[1].filename).resolve().parent
+        scene = resolve_scene_path(scene, caller)
         key = (str(scene), tuple(sorted((overrides or {}).items())), tuple(models or ()))
-        if key not in _femcheck_results:
-            _femcheck_results[key] = run(scene, overrides, models)
-        return _femcheck_results[key]
+        if key not in memo:
+            memo[key] = run(scene, overrides, models)
+        return memo[key]
 
     return _run
 

@@ -133,6 +133,7 @@ def test_coupling_constant():
     assert coupling_constant(Elastic(1, 0, rigid=True), steel) == pytest.approx(-(1 - 2 * NU) / (2 * E / 2.6))
 
 
+@pytest.mark.slow
 def test_scenes_pass_and_input_errors():
     # End to end through the runner: every toleranced comparison of the two scenes passes.
     for scene in ("carter-2d", "cattaneo-2d"):
