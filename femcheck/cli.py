@@ -14,13 +14,28 @@ from typing import Iterator, List, Optional
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn,
+                           TimeElapsedColumn)
 from rich.table import Table
 
 from .errors import InputError
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
                   help="Cross-check fast contact models against FEM references.")
+
+
+def _version(value: bool) -> None:
+    if value:
+        from . import __version__
+
+        print(f"femcheck {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _root(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="print the version and exit")) -> None:
+    """Cross-check fast contact models against FEM references."""
 out_console = Console()
 SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786) to run the cases on; "
                   "default: local processes (needs the dist extra)")
@@ -31,22 +46,26 @@ err_console = Console(stderr=True)
 
 @contextmanager
 def progress_bar(total: int | None, description: str) -> Iterator:
-    """A rich progress bar on stderr (silent when stderr is not a terminal). Yields advance(text)."""
-    prog = Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), TimeElapsedColumn(),
-                    console=err_console, transient=True, disable=not err_console.is_terminal)
+    """A rich progress bar on stderr (silent when stderr is not a terminal). Yields advance(text); its
+    ``log(line)`` prints a line above the bar (and to stderr when it is not a terminal)."""
+    prog = Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                    TimeElapsedColumn(), console=err_console, transient=True, disable=not err_console.is_terminal)
     with prog:
         task = prog.add_task(description, total=total)
 
         def advance(text: str = "", step: int = 1) -> None:
             prog.update(task, advance=step, description=text or description)
 
+        advance.log = prog.console.print
         yield advance
 
 
-def _scene(name: str, sets: list[str] | None):
-    from .scene import load_scene, parse_overrides
+def _scene(name: str, sets: list[str] | None, models: str | None = None):
+    """The validated scene; ``--models`` replaces ``models.run`` before validation."""
+    from .runner import resolve_scene
+    from .scene import parse_overrides
 
-    return load_scene(name, parse_overrides(sets or []))
+    return resolve_scene(name, parse_overrides(sets or []), _models(models))
 
 
 def _models(models: str | None) -> list[str] | None:
@@ -60,6 +79,16 @@ def _write_json(path: Path, data) -> None:
         (tmp / path.name).write_text(json.dumps(data, indent=1))
 
 
+VERDICT_STYLE = {"valid": "green", "contrast": "dim", "not valid here": "red", "reference uncertified": "yellow",
+                 "ungraded": "magenta", "failed": "bold red", "skipped": "dim", "reference": "blue",
+                 "not compared": "blue"}
+
+
+def _verdict(v: str, contrast: bool = False) -> str:
+    text = v + (" (contrast)" if contrast and v == "not valid here" else "")
+    return f"[{VERDICT_STYLE.get(v, 'white')}]{text}[/]"
+
+
 def _print_run(res) -> None:
     t = Table(title=f"{res.scene}: models")
     for col in ("model", "status", "time (s)", "quantities", "note"):
@@ -68,14 +97,38 @@ def _print_run(res) -> None:
         q = "  ".join(f"{k}={v:.5g}" for k, v in m.quantities.items())
         t.add_row(name, m.status + (" (cached)" if m.cached else ""), f"{m.time_s:.3f}", q, m.error or "")
     out_console.print(t)
+    if not res.comparisons:
+        refs = ", ".join(res.params.get("models.references", ()))
+        out_console.print(f"nothing compared: no reference ran (models.references: {refs})")
+        return
     c = Table(title="comparisons")
-    for col in ("model", "reference", "quantity", "rel. error", "tolerance", "result"):
+    for col in ("model", "reference", "quantity", "rel. error", "tolerance", "verdict", "note"):
         c.add_column(col)
     for cmp in res.comparisons:
-        verdict = "-" if cmp.passed is None else ("[green]pass[/]" if cmp.passed else "[red]FAIL[/]")
-        tol = "-" if cmp.tolerance is None else f"{cmp.tolerance:.2%}"
-        c.add_row(cmp.model, cmp.reference, cmp.quantity, f"{cmp.rel_error:.3%}", tol, verdict)
+        tol = "-" if cmp.tolerance is None else f"{cmp.tolerance:.3g}"
+        c.add_row(cmp.model, cmp.reference, cmp.quantity, f"{cmp.rel_error:.3g}", tol,
+                  _verdict(cmp.verdict, cmp.contrast), cmp.note)
     out_console.print(c)
+    for p in res.problems:
+        out_console.print(f"[red]{res.scene}: {p}[/]")
+
+
+def _print_dashboard(runs) -> None:
+    """The suite's validity dashboard: one row per scene and model (the report's table)."""
+    from .report.dashboard import rows
+
+    t = Table(title="validity: worst comparison of each model against each reference")
+    for col in ("scene", "model", "role", "worst error / tolerance", "verdict", "run time"):
+        t.add_column(col)
+    for run in runs:
+        for i, r in enumerate(rows(run)):
+            worst = "; ".join(f"{c.reference}: {c.rel_error:.2g} {c.quantity} (tol {c.tolerance:.2g})"
+                              if c.tolerance is not None else f"{c.reference}: {c.rel_error:.2g} {c.quantity}"
+                              for c in r.per_reference)
+            scene = (f"{run.scene} " + ("[green]PASS[/]" if run.passed else "[red]FAIL[/]")) if i == 0 else ""
+            t.add_row(scene, r.model, r.role, worst or r.note, _verdict(r.verdict, r.role == "contrast"),
+                      r.time_text, end_section=i == len(run.models) - 1)
+    out_console.print(t)
 
 
 @app.command("list")
@@ -116,15 +169,20 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
             models: Optional[str] = typer.Option(None, "--models", help="comma-separated models"),
             out: Optional[Path] = typer.Option(None, "--out", help="write the report (index.html, summary.json, figures) here"),
             json_out: bool = typer.Option(False, "--json", help="print one JSON object"),
-            rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results")) -> None:
+            rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results"),
+            references: Optional[Path] = typer.Option(None, "--references", help="directory where the FE "
+                                                      "references of your scene are kept (read and written); "
+                                                      "without it they stay in the cache")) -> None:
     """Run one scene and compare its models."""
     from .runner import run
 
-    sc = _scene(scene, set_)
+    sc = _scene(scene, set_, models)
     t0 = time.perf_counter()
     with progress_bar(None, sc.name) as advance:
-        # a scene as shipped (no --set) is stored as a reference; one-off variations only go to the cache
-        res = run(sc, models=_models(models), rebuild=rebuild, progress=advance, store_references=not set_)
+        # a built-in scene as shipped (no --set) is stored with the package's references; a user's scene only in
+        # the directory the user names; one-off variations only go to the cache
+        store = references is not None or (sc.builtin and not set_)
+        res = run(sc, rebuild=rebuild, progress=advance, store_references=store, references_dir=references)
     if out is not None:
         from .report.html import write_report
 
@@ -148,8 +206,11 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
 
     scenes = [s for s in (load_scene(n) for n in builtin_scene_files()) if name in s.tags]
     if not scenes:
+        from .scene import did_you_mean
+
         tags = sorted({t for n in builtin_scene_files() for t in load_scene(n).tags})
-        raise InputError("suite", f"no scene is tagged {name!r}; allowed: {', '.join(tags)}")
+        raise InputError("suite", f"no scene is tagged {name!r}{did_you_mean(name, tags)}; allowed: "
+                                  f"{', '.join(tags)}")
     out = out or Path("reports") / name
     t0 = time.perf_counter()
     runs = []
@@ -158,12 +219,15 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
             runs.append(run(sc, rebuild=rebuild, progress=lambda text: advance(text, 0), store_references=True))
             advance(sc.name)
     index = write_report(runs, out, name, time.perf_counter() - t0)
-    for r in runs:
-        _print_run(r)
-    ok = all(r.passed for r in runs)
-    out_console.print(f"{'PASS' if ok else 'FAIL'}: {len(runs)} scene(s) in {time.perf_counter() - t0:.1f} s; "
-                      f"report {index}")
-    raise typer.Exit(0 if ok else 1)
+    _print_dashboard(runs)
+    failed = [r for r in runs if not r.passed]
+    for r in failed:
+        for p in r.problems:
+            out_console.print(f"[red]{r.scene}: {p}[/]")
+    verdict = "PASS" if not failed else f"FAIL: {len(failed)} of {len(runs)} scene(s) failed " \
+        f"({', '.join(r.scene for r in failed)})"
+    out_console.print(f"{verdict}; {len(runs)} scene(s) in {time.perf_counter() - t0:.1f} s; report {index}")
+    raise typer.Exit(0 if not failed else 1)
 
 
 @app.command("bench")
@@ -174,7 +238,7 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
               scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
     """Time-vs-error sweep of each model's discretisation: table, bench.json, bench.csv, log-log plot."""
     from .bench import bench, scaling_exponent
-    from .report import plots
+    from .report import charts
     from .report.html import AtomicDir
 
     sc = _scene(scene, set_)
@@ -206,7 +270,7 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         lines = [",".join(cols)] + [",".join(json.dumps(r.get(c, "")).replace(",", ";") for c in cols)
                                     for r in rows]
         (tmp / "bench.csv").write_text("\n".join(lines) + "\n")
-        plots.time_error(rows, tmp / "bench.png", f"{sc.name}: run time vs error")
+        charts.time_error(rows, tmp / "bench.png", f"{sc.name}: run time vs error")
     for m, e in exps.items():
         if e is not None:
             out_console.print(f"{m}: time ~ size^{e:.2f}")
@@ -218,35 +282,58 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
 @app.command("stress")
 def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
                set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override"),
+               models: Optional[str] = typer.Option(None, "--models", help="comma-separated models (default: "
+                                                     "models.run without the FE references)"),
                workers: Optional[int] = typer.Option(None, "--workers", help="worker processes"),
                out: Optional[Path] = typer.Option(None, "--out", help="directory (default reports/stress-SCENE)"),
                scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
-    """Stability sweep over parameter extremes; lists every case that failed, was non-physical or inaccurate."""
+    """Stability sweep over parameter extremes; lists every case that failed, was non-physical, inaccurate or
+    compared with nothing. FE references run only when --models names them (minutes and GB per case)."""
     from .problems import problem
     from .report.html import AtomicDir
-    from .stability import stress
+    from .stability import default_models, stress
 
-    sc = _scene(scene, set_)
+    sc = _scene(scene, set_, models)
+    names = _models(models) or default_models(sc)
     out = out or Path("reports") / f"stress-{sc.name}"
-    n = len(problem(sc.kind).stress_cases(sc))
+    prob = problem(sc.kind)
+    n = len(prob.stress_cases(sc))
+    left_out = [m for m in sc["models.run"] if m not in names]
+    out_console.print(f"stress {sc.name}: {n} cases, models {', '.join(names)}"
+                      + (f" (left out: {', '.join(left_out)}; --models to add them)" if left_out else ""))
+    first = getattr(prob, "STRESS_QUANTITIES", ("p_max",))[0]
+    done = [0]
     with progress_bar(n, f"stress {sc.name}") as advance:
-        cases = stress(sc, workers, on_done=lambda i, c: advance(c.label), scheduler=scheduler)
+        def on_done(i, c):
+            done[0] += 1
+            colour = {"ok": "green", "refused": "yellow", "unchecked": "yellow"}.get(c.status, "red")
+            t = sum(m.get("time_s", 0.0) for m in c.models.values())
+            errs = ", ".join(f"{m} {first} {v['err_' + first]:.1e}" for m, v in c.models.items()
+                             if "err_" + first in v)
+            advance.log(f"[{done[0]:>{len(str(n))}}/{n}] {c.label}: [{colour}]{c.status}[/] ({t:.2f} s)"
+                        + (f" {errs}" if errs else "") + (f" - {'; '.join(c.problems)}" if c.problems else ""))
+            advance(c.label)
+
+        cases = stress(sc, workers, on_done=on_done, scheduler=scheduler, models=names)
     t = Table(title=f"{sc.name}: stability sweep ({len(cases)} cases)")
-    models = sorted({m for c in cases for m in c.models})
-    first = getattr(problem(sc.kind), "STRESS_QUANTITIES", ("p_max",))[0]
-    for col in ["case", "status"] + [f"{m} {first} err" for m in models] + ["problems"]:
+    shown = sorted({m for c in cases for m in c.models})
+    for col in ["case", "status"] + [f"{m} {first} err" for m in shown] + ["problems"]:
         t.add_column(col)
     for c in cases:
-        colour = {"ok": "green", "refused": "yellow"}.get(c.status, "red")
+        colour = {"ok": "green", "refused": "yellow", "unchecked": "yellow"}.get(c.status, "red")
         errs = [f"{c.models[m]['err_' + first]:.1e}" if "err_" + first in c.models.get(m, {}) else
-                c.models.get(m, {}).get("status", "-") for m in models]
+                c.models.get(m, {}).get("status", "-") for m in shown]
         t.add_row(c.label, f"[{colour}]{c.status}[/]", *errs, "; ".join(c.problems))
     out_console.print(t)
     bad = [c for c in cases if c.status in ("failed", "inaccurate")]
+    unchecked = [c for c in cases if c.status == "unchecked"]
     with AtomicDir(out) as tmp:
-        (tmp / "stress.json").write_text(json.dumps({"scene": sc.name, "cases": [c.to_json() for c in cases],
-                                                    "failures": [c.label for c in bad]}, indent=1))
-    out_console.print(f"{len(bad)} of {len(cases)} cases failed or were inaccurate; written {out}/stress.json")
+        (tmp / "stress.json").write_text(json.dumps({"scene": sc.name, "models": names,
+                                                    "cases": [c.to_json() for c in cases],
+                                                    "failures": [c.label for c in bad],
+                                                    "unchecked": [c.label for c in unchecked]}, indent=1))
+    out_console.print(f"{len(bad)} of {len(cases)} cases failed or were inaccurate, {len(unchecked)} compared with "
+                      f"no reference; written {out}/stress.json")
     raise typer.Exit(1 if bad else 0)
 
 
@@ -265,7 +352,7 @@ def map_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     from .report.html import write_map_report
     from .validity_map import parse_axis, validity_map
 
-    sc = _scene(scene, set_)
+    sc = _scene(scene, set_, models)
     ax, ay = parse_axis("--x", x, sc), parse_axis("--y", y, sc)
     names = _models(models)
     out = out or Path("reports") / f"map-{sc.name}"
@@ -294,6 +381,9 @@ def calibrate(scene: str = typer.Argument(..., help="scene whose kind has a cali
         raise InputError("scene", f"kind {sc.kind} has no calibrated model")
     with progress_bar(None, f"calibrate {sc.name}") as advance:
         data = prob.calibrate(sc, progress=advance)
+    if out is None and not sc.builtin:      # never write a user's calibration into the installed package
+        raise InputError("--out", f"{sc.source} is not a built-in scene: say where its calibration goes "
+                                  "(--out FILE)")
     target = out or prob.CALIBRATION_FILE
     _write_json(target, data)
     pv = data["provenance"]
@@ -303,11 +393,21 @@ def calibrate(scene: str = typer.Argument(..., help="scene whose kind has a cali
 
 
 def main() -> None:
+    import signal
+
+    from .executor import Interrupted, stop_on_signals
+
     try:
-        app()
+        with stop_on_signals((signal.SIGINT, signal.SIGTERM)):
+            app()
     except InputError as err:
         print(f"femcheck: error: {err}", file=sys.stderr)
         sys.exit(2)
+    except (Interrupted, KeyboardInterrupt) as err:
+        signum = getattr(err, "signum", signal.SIGINT)
+        print(f"femcheck: interrupted ({signal.Signals(signum).name}): stopped, workers ended, nothing written",
+              file=sys.stderr)
+        sys.exit(128 + signum)
 
 
 if __name__ == "__main__":

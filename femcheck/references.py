@@ -28,13 +28,14 @@ def reference_dir() -> Path:
     return Path(env) if env else Path(__file__).resolve().parent.parent / "references"
 
 
-def _paths(kind: str, model: str, key: str) -> tuple[Path, Path]:
-    base = reference_dir() / kind / f"{model}-{key[:16]}"
+def _paths(kind: str, model: str, key: str, root: Path | None = None) -> tuple[Path, Path]:
+    base = (reference_dir() if root is None else Path(root)) / kind / f"{model}-{key[:16]}"
     return base.with_suffix(".json"), base.with_suffix(".npz")
 
 
-def load(kind: str, model: str, key: str) -> ModelResult | None:
-    meta_path, field_path = _paths(kind, model, key)
+def load(kind: str, model: str, key: str, root: Path | None = None) -> ModelResult | None:
+    """The stored reference for ``key`` under ``root`` (default :func:`reference_dir`), or None."""
+    meta_path, field_path = _paths(kind, model, key, root)
     if not meta_path.is_file():
         return None
     try:
@@ -51,12 +52,14 @@ def load(kind: str, model: str, key: str) -> ModelResult | None:
     return ModelResult(meta["model"], "ok", meta["time_s"], meta["quantities"], stats, fields, cached=True)
 
 
-def store(kind: str, model: str, key: str, res: ModelResult, scene_name: str, params: dict[str, Any]) -> Path | None:
-    """Write ``res`` as the reference for ``key``; returns the JSON path, or None when the directory is not
-    writable (an installed package without a checkout)."""
+def store(kind: str, model: str, key: str, res: ModelResult, scene_name: str, params: dict[str, Any],
+          root: Path | None = None) -> Path | None:
+    """Write ``res`` as the reference for ``key`` under ``root`` (default :func:`reference_dir`: the built-in
+    scenes' references; a user's scene stores only where the user says); returns the JSON path, or None when
+    the directory is not writable (an installed package without a checkout)."""
     from . import __version__
 
-    meta_path, field_path = _paths(kind, model, key)
+    meta_path, field_path = _paths(kind, model, key, root)
     try:
         meta_path.parent.mkdir(parents=True, exist_ok=True)
     except OSError:

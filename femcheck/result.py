@@ -36,10 +36,21 @@ class ModelResult:
         return out
 
 
+# Verdicts of a comparison (compare.py decides them), from the worst to the best for a scene:
+#   ungraded              the scene gives no tolerance for it: an error of the scene (built-in scenes have none)
+#   not valid here        outside its tolerance (a candidate: the scene fails) or its band (a contrast: shown)
+#   reference uncertified the reference quantity's convergence certificate says certified: false; cannot pass
+#   contrast              a contrast model (models.contrast) within its band: shown, not claimed valid
+#   valid                 a candidate model within its tolerance
+VERDICTS = ("ungraded", "not valid here", "reference uncertified", "contrast", "valid")
+
+
 @dataclass
 class Comparison:
     """One quantity of ``model`` against ``reference``: rel_error = |value - ref| / |ref| (profile norms are
-    already relative and carry reference_value 0)."""
+    already relative and carry reference_value 0). ``verdict`` is one of :data:`VERDICTS`; ``passed`` (``pass``
+    in the JSON) is true only for ``valid``; ``contrast`` marks a contrast model (``models.contrast``); ``note``
+    says why a verdict is not ``valid`` where the numbers alone do not (an uncertified reference, no tolerance)."""
 
     quantity: str
     model: str
@@ -48,7 +59,10 @@ class Comparison:
     reference_value: float
     rel_error: float
     tolerance: float | None
-    passed: bool | None
+    passed: bool
+    verdict: str = "valid"
+    contrast: bool = False
+    note: str = ""
 
     def to_json(self) -> dict[str, Any]:
         d = asdict(self)
@@ -58,7 +72,8 @@ class Comparison:
 
 @dataclass
 class RunResult:
-    """A scene run: parameters, per-model results and comparisons (the ``--json`` object)."""
+    """A scene run: parameters, per-model results and comparisons (the ``--json`` object). ``not_compared``:
+    quantities left out of the comparisons and why (e.g. a peak that grows with refinement by nature)."""
 
     scene: str
     params: dict[str, Any]
@@ -66,16 +81,33 @@ class RunResult:
     comparisons: list[Comparison]
     kind: str = ""
     description: str = ""
+    not_compared: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def problems(self) -> list[str]:
+        """Why the scene fails, one line each: a model that failed, a candidate model not valid here, a
+        comparison without a tolerance. A contrast outside its band and an uncertified reference are shown in
+        the comparisons but do not fail the scene."""
+        out = [f"{name} failed: {m.error}" for name, m in self.models.items() if m.status == "failed"]
+        for c in self.comparisons:
+            if c.verdict == "not valid here" and not c.contrast:
+                out.append(f"{c.model} {c.quantity} off {c.reference} by {c.rel_error:.3g} > tolerance "
+                           f"{c.tolerance:.3g}")
+            elif c.verdict == "ungraded":
+                out.append(f"{c.model} {c.quantity} against {c.reference}: {c.note}")
+        return out
 
     @property
     def passed(self) -> bool:
-        ok = all(m.status != "failed" for m in self.models.values())
-        return ok and all(c.passed is not False for c in self.comparisons)
+        return not self.problems
 
     def to_json(self) -> dict[str, Any]:
-        return {"scene": self.scene, "params": _jsonable(self.params),
-                "models": {k: v.to_json() for k, v in self.models.items()},
-                "comparisons": [c.to_json() for c in self.comparisons]}
+        out = {"scene": self.scene, "params": _jsonable(self.params),
+               "models": {k: v.to_json() for k, v in self.models.items()},
+               "comparisons": [c.to_json() for c in self.comparisons]}
+        if self.not_compared:
+            out["not_compared"] = dict(self.not_compared)
+        return out
 
 
 def _jsonable(obj: Any) -> Any:
@@ -98,11 +130,12 @@ def _jsonable(obj: Any) -> Any:
 @dataclass
 class StressCase:
     """One case of a stability sweep (:mod:`femcheck.stability`): the overrides it applies and, after the run,
-    its status (ok | failed | refused | inaccurate), per-model summaries and the problems found."""
+    its status (ok | failed | refused | inaccurate | unchecked: compared with no reference), per-model
+    summaries and the problems found."""
 
     label: str
     overrides: dict[str, Any]
-    status: str = "pending"          # ok | failed | refused | inaccurate
+    status: str = "pending"          # ok | failed | refused | inaccurate | unchecked
     models: dict[str, dict] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
 

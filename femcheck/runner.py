@@ -17,15 +17,34 @@ from .scene import Scene, load_scene
 Progress = Callable[[str], None]
 
 
-def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = None) -> Scene:
-    if isinstance(scene, Scene):
-        return scene.with_overrides(overrides) if overrides else scene
-    return load_scene(scene, overrides)
+def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = None,
+                  models: list[str] | None = None) -> Scene:
+    """The validated scene with ``overrides``; ``models`` (the ``--models`` option) replaces ``models.run``
+    *before* validation, so a scene whose ``models.run`` lists a model the overrides make inapplicable (e.g.
+    uncoated Hertz on a rigid substrate) runs with the models asked for."""
+    if models:
+        overrides = {**(overrides or {}), "models.run": list(models)}
+    try:
+        if isinstance(scene, Scene):
+            return scene.with_overrides(overrides) if overrides else scene
+        return load_scene(scene, overrides)
+    except InputError as err:
+        if models and err.key == "models.run":        # the user typed --models, not models.run
+            raise InputError("--models", str(err).partition(": ")[2]) from None
+        raise
 
 
-def _store_reference(scene: Scene, name: str, key: str, res: ModelResult, dep: dict) -> None:
+def _store_reference(scene: Scene, name: str, key: str, res: ModelResult, dep: dict, root: Path | None) -> None:
     relevant = {p: v for p, v in scene.params.items() if p.startswith(dep["params"])}
-    references.store(scene.kind, name, key, res, scene.name, relevant)
+    references.store(scene.kind, name, key, res, scene.name, relevant, root)
+
+
+def _stored(scene: Scene, name: str, key: str, root: Path | None) -> ModelResult | None:
+    """A stored reference: in the user's directory ``root`` first, then among the built-in references."""
+    for where in ([root] if root is not None else []) + [None]:
+        if (ref := references.load(scene.kind, name, key, where)) is not None:
+            return ref
+    return None
 
 
 def model_modules(scene: Scene, name: str) -> tuple[str, ...]:
@@ -42,22 +61,24 @@ def model_key(scene: Scene, name: str) -> str:
 
 
 def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = False,
-              progress: Progress | None = None, store_references: bool = False) -> ModelResult:
+              progress: Progress | None = None, store_references: bool = False,
+              references_dir: Path | None = None) -> ModelResult:
     """Run one model; failures become ``status='failed'`` with the reason, never an exception (bad input
     still raises InputError). Results of models listed in the kind's DEPENDS are cached; those marked as
-    references are first looked up in the stored references (:mod:`femcheck.references`) and, with
-    ``store_references``, stored there after a solve."""
+    references are first looked up in the stored references (:mod:`femcheck.references`: ``references_dir``
+    first, then the built-in ones) and, with ``store_references``, stored after a solve: in ``references_dir``
+    when given, else with the built-in references."""
     prob = problem(scene.kind)
     dep = prob.DEPENDS.get(name)
     k = None
     is_reference = bool(dep and dep.get("reference"))
     if dep is not None and use_cache:
         k = model_key(scene, name)
-        if not rebuild and is_reference and (ref := references.load(scene.kind, name, k)) is not None:
+        if not rebuild and is_reference and (ref := _stored(scene, name, k, references_dir)) is not None:
             return ref
         if not rebuild and (hit := cache.load(k)) is not None:
             if is_reference and store_references:       # solved earlier under --set: keep it as the reference
-                _store_reference(scene, name, k, hit, dep)
+                _store_reference(scene, name, k, hit, dep, references_dir)
             return hit
     t0 = time.perf_counter()
     try:
@@ -76,24 +97,23 @@ def run_model(scene: Scene, name: str, use_cache: bool = True, rebuild: bool = F
     elif k is not None:
         cache.store(k, res)
         if is_reference and store_references:
-            _store_reference(scene, name, k, res, dep)
+            _store_reference(scene, name, k, res, dep, references_dir)
     return res
 
 
 def run(scene: Scene | str | Path, overrides: dict[str, Any] | None = None, models: list[str] | None = None,
         use_cache: bool = True, rebuild: bool = False, progress: Progress | None = None,
-        store_references: bool = False) -> RunResult:
-    """Run ``models`` (default: the scene's ``models.run``) and compare them with the scene's references."""
-    sc = resolve_scene(scene, overrides)
+        store_references: bool = False, references_dir: Path | None = None) -> RunResult:
+    """Run ``models`` (default: the scene's ``models.run``; see :func:`resolve_scene`) and compare them with
+    the scene's references."""
+    sc = resolve_scene(scene, overrides, models)
     prob = problem(sc.kind)
-    names = list(models) if models else list(sc["models.run"])
-    for n in names:
-        if n not in prob.MODELS:
-            raise InputError("--models", f"{n!r} is not a model of {sc.kind}; allowed: {', '.join(prob.MODELS)}")
+    names = list(sc["models.run"])
     results = {}
     for n in names:
         if progress:
             progress(f"{sc.name}: {n}")
-        results[n] = run_model(sc, n, use_cache, rebuild, progress, store_references)
-    comparisons = compare(sc, results, prob.profile_scale(sc))
-    return RunResult(sc.name, dict(sc.params), results, comparisons, sc.kind, sc.description)
+        results[n] = run_model(sc, n, use_cache, rebuild, progress, store_references, references_dir)
+    singular = prob.singular_quantities(sc) if hasattr(prob, "singular_quantities") else ()
+    comparisons, not_compared = compare(sc, results, prob.profile_scale(sc), singular)
+    return RunResult(sc.name, dict(sc.params), results, comparisons, sc.kind, sc.description, not_compared)

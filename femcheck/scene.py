@@ -7,6 +7,7 @@ exist, their type, unit and allowed range; anything else is refused with one lin
 """
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -31,6 +32,7 @@ class Key:
     lo_closed: bool = False
     hi_closed: bool = False
     choices: tuple[str, ...] | None = None
+    empty_ok: bool = False            # a list key that may be empty (models.contrast)
 
     def allowed(self) -> str:
         if self.choices is not None:
@@ -38,11 +40,13 @@ class Key:
                 "a comma-separated list of " + ", ".join(self.choices)
         if self.kind == "bool":
             return "true or false"
+        kind = {"int": "integer", "float": "number", "str": "string"}.get(self.kind, self.kind)
         if self.lo is None and self.hi is None:
-            return f"any {self.kind}"
+            return f"any {kind}"
         left = ("[" if self.lo_closed else "(") + ("-inf" if self.lo is None else f"{self.lo:g}")
         right = ("inf" if self.hi is None else f"{self.hi:g}") + ("]" if self.hi_closed else ")")
-        return f"{left}, {right}" + ("" if self.unit == "-" else f" {self.unit}")
+        return ("an integer in " if self.kind == "int" else "") + f"{left}, {right}" + \
+            ("" if self.unit == "-" else f" {self.unit}")
 
     def coerce(self, name: str, value: Any) -> Any:
         """Convert (strings from --set included) and range-check; raise InputError naming ``name``."""
@@ -80,12 +84,14 @@ class Key:
             return [Key("float", self.unit, lo=self.lo, hi=self.hi, lo_closed=self.lo_closed,
                         hi_closed=self.hi_closed).coerce(name, v) for v in items]
         if self.kind == "list":
-            items = [s.strip() for s in value.split(",")] if isinstance(value, str) else value
-            if not isinstance(items, list) or not items or not all(isinstance(i, str) and i for i in items):
+            items = [s.strip() for s in value.split(",") if s.strip()] if isinstance(value, str) else value
+            if not isinstance(items, list) or not (items or self.empty_ok) or \
+                    not all(isinstance(i, str) and i for i in items):
                 raise bad
             if self.choices and any(i not in self.choices for i in items):
                 unknown = next(i for i in items if i not in self.choices)
-                raise InputError(name, f"{unknown!r} is not allowed; allowed: {self.allowed()}")
+                raise InputError(name, f"{unknown!r} is not allowed{did_you_mean(unknown, self.choices)}; "
+                                       f"allowed: {self.allowed()}")
             return items
         raise TypeError(f"unknown key kind {self.kind}")
 
@@ -172,7 +178,7 @@ def model_keys(names: tuple[str, ...]) -> dict[str, Key]:
         "models.run": Key("list", "-", "models to run", choices=names),
         "models.references": Key("list", "-", "models every other model is compared against", choices=names),
         "models.contrast": Key("list", "-", "models shown as contrasts (not expected to be valid here)",
-                               choices=names),
+                               choices=names, empty_ok=True),
     }
 
 
@@ -205,6 +211,12 @@ class Scene:
 
     def material(self, body: str) -> Elastic:
         return elastic(self.params, body)
+
+    @property
+    def builtin(self) -> bool:
+        """A scene shipped in femcheck/scenes (its references are stored with the package's)."""
+        path = builtin_scene_files().get(self.name)
+        return path is not None and bool(self.source) and Path(self.source).resolve() == path.resolve()
 
     def with_overrides(self, overrides: dict[str, Any]) -> "Scene":
         """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry), and setting
@@ -240,6 +252,19 @@ def _flatten(d: dict, prefix: str = "") -> dict[str, Any]:
     return out
 
 
+def did_you_mean(word: str, candidates) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``candidates`` to a misspelt ``word``, else ``""``."""
+    close = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _show_hint(name: str, source: str) -> str:
+    """The ``femcheck show`` command that lists a scene's keys: by name for a built-in scene, else by path."""
+    builtin = builtin_scene_files().get(name)
+    return f"femcheck show {name}" if builtin is not None and str(builtin) == source or not source \
+        else f"femcheck show {source}"
+
+
 def lookup_key(schema: dict[str, Key], key: str) -> Key | None:
     if key in schema:
         return schema[key]
@@ -260,15 +285,34 @@ def build_scene(name: str, kind: str, description: str, tags: list[str], raw: di
     for key, value in raw.items():
         spec = lookup_key(schema, key)
         if spec is None:
-            raise InputError(key, f"unknown key for a {kind} scene; see `femcheck show {name}` for the keys")
+            known = [k for k in schema if "*" not in k] + list(prob.DEFAULTS)
+            raise InputError(key, f"unknown key for a {kind} scene{did_you_mean(key, known)}; see "
+                                  f"`{_show_hint(name, source)}` for the keys")
         params[key] = spec.coerce(key, value)
     for key, default in prob.DEFAULTS.items():
         params.setdefault(key, default)
+    if "models.contrast" in schema:
+        params.setdefault("models.contrast", [])
+        _check_models(params, getattr(prob, "MODEL_NAMES", ()))
     missing = [k for k in prob.REQUIRED if k not in params]
     if missing:
         raise InputError(missing[0], "required key is missing")
     prob.validate(params)
     return Scene(name, kind, description, list(tags), params, schema, source)
+
+
+def _check_models(params: dict[str, Any], names: tuple[str, ...]) -> None:
+    """A contrast is not a reference; a tolerance names a model of the kind (or ``<model>@finest``)."""
+    both = set(params["models.contrast"]) & set(params.get("models.references", ()))
+    if both:
+        raise InputError("models.contrast", f"{sorted(both)[0]!r} is also a reference; a reference is what the "
+                                            "others are judged against, it cannot be a contrast")
+    for key in params:
+        if key.startswith("tolerances.") and names:
+            model = key.split(".")[1].strip('"').partition("@")[0]
+            if model not in names:
+                raise InputError(key, f"{model!r} is not a model of this kind{did_you_mean(model, names)}; "
+                                      f"allowed: {', '.join(names)} (or <model>@finest)")
 
 
 def parse_overrides(items: list[str]) -> dict[str, str]:
@@ -292,8 +336,8 @@ def load_scene(scene: str | Path, overrides: dict[str, Any] | None = None) -> Sc
     files = builtin_scene_files()
     path = files.get(str(scene)) or Path(scene)
     if not path.is_file():
-        raise InputError("scene", f"{scene!r} is neither a built-in scene ({', '.join(sorted(files))}) "
-                                  "nor a TOML file")
+        raise InputError("scene", f"{scene!r} is neither a built-in scene{did_you_mean(str(scene), files)} "
+                                  f"nor a TOML file; allowed: {', '.join(sorted(files))} or a path")
     try:
         data = tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as err:

@@ -28,5 +28,5 @@ def assert_agree(result: RunResult, name: str, model: str, reference: str, rtol:
     rel = abs(value - ref) / abs(ref)
     if not rel <= rtol:
         raise AssertionError(f"{result.scene}: {model} {name} = {value:.6g} differs from {reference} = {ref:.6g} "
-                             f"by {rel:.3%} > {rtol:.3%}")
+                             f"by {rel:.3g} (relative) > rtol {rtol:.3g}")
     return rel

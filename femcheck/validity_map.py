@@ -92,7 +92,9 @@ def _map_point(args: tuple[Scene, int, int, dict[str, Any], list[str] | None]) -
         pt.status = "failed"
         pt.message = "; ".join(f"{k}: {v}" for k, v in pt.failed_models.items())
     for c in res.comparisons:
-        pt.errors[(c.model, c.reference, c.quantity)] = (c.rel_error, c.tolerance, c.passed)
+        # the map shows where a model is within its tolerance (or band), whatever its role in the scene
+        within = None if c.tolerance is None else bool(c.rel_error <= c.tolerance)
+        pt.errors[(c.model, c.reference, c.quantity)] = (c.rel_error, c.tolerance, within)
     return pt
 
 

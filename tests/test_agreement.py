@@ -5,6 +5,7 @@ within 1 % after Richardson extrapolation; the FEM reference agrees with the BEM
 import pytest
 
 SCENE = "hertz-line"
+pytestmark = pytest.mark.slow          # one hertz-line run with its three FE levels, shared by every test here
 
 
 @pytest.mark.parametrize("quantity", ["p_max", "half_width"])

@@ -133,12 +133,13 @@ def test_coupling_constant():
     assert coupling_constant(Elastic(1, 0, rigid=True), steel) == pytest.approx(-(1 - 2 * NU) / (2 * E / 2.6))
 
 
+@pytest.mark.slow
 def test_scenes_pass_and_input_errors():
     # End to end through the runner: every toleranced comparison of the two scenes passes.
     for scene in ("carter-2d", "cattaneo-2d"):
         res = femcheck.run(scene, use_cache=False)
         assert res.models["exact"].status == "ok"
-        checked = [c for c in res.comparisons if c.tolerance is not None]
+        checked = [c for c in res.comparisons if c.tolerance is not None and not c.contrast]
         assert checked and all(c.passed for c in checked)
     with pytest.raises(InputError, match="exactly one"):
         femcheck.run("carter-2d", {"load.tangential_per_length": 1e4})

@@ -65,5 +65,6 @@ def test_stress_case_counts_a_skipped_model_as_not_applicable():
 
     sc = load_scene("creep-curve", {"models.run": "exact,linear,fastsim"})
     case = _run_case((sc, StressCase("rigid body1", {"materials.body1.rigid": True})))
-    assert case.status == "ok", case.problems
+    # not a failure; but with linear and FASTSIM skipped nothing is compared with the exact theory: unchecked
+    assert case.status == "unchecked" and not any("failed" in p for p in case.problems), case.problems
     assert case.models["linear"]["status"] == "skipped" and case.models["exact"]["status"] == "ok"

@@ -68,6 +68,7 @@ def test_amg_cg_reproduces_uniaxial_compression_exactly(small_block):
 TWO_LEVELS = {"numerics.fem_levels": 2, "numerics.fem_finite_size_check": False}
 
 
+@pytest.mark.slow
 def test_two_fem_levels_approach_hertz(femcheck_run):
     # the reference's two coarser levels (a/8, a/16 in the contact; about 8 s). Issue 4 asks the finest level
     # of a reference to be within 3 % of Hertz; the extrapolated certified reference (to a/32) is checked
@@ -123,6 +124,7 @@ def test_reference_round_trip_and_key_mismatch(tmp_path, monkeypatch):
     assert references.load("point_contact", "fem", "a" * 16 + "b" * 16) is None
 
 
+@pytest.mark.slow
 def test_report_has_3d_pictures_of_the_fem_solution(femcheck_run, tmp_path):
     pytest.importorskip("pyvista")            # installed with the test extra
     from PIL import Image
@@ -147,6 +149,7 @@ def test_report_has_3d_pictures_of_the_fem_solution(femcheck_run, tmp_path):
         assert png.name in index.read_text()
 
 
+@pytest.mark.slow
 def test_roller_fem_coarse_level_against_bem(femcheck_run):
     # one level (a/4 over the footprint, block 2L beyond it; about 16 s): the sharp-edge peak sits at the
     # roller end within one BEM cell (dy = L/129) and the centre pressure is within the issue's 3 % of the BEM
@@ -192,6 +195,7 @@ def test_direct_and_amg_solvers_give_the_same_contact():
     assert direct.approach == pytest.approx(amg.approach, rel=1e-8)
 
 
+@pytest.mark.slow
 def test_penalty_tends_to_the_active_set_as_one_over_kappa():
     exact = _level0()
     d2, d3 = (abs(_level0(method="penalty", penalty_factor=f).p_max / exact.p_max - 1) for f in (1e2, 1e3))

@@ -55,7 +55,7 @@ def carter_force(xr: float) -> float:
 
 
 @pytest.fixture(scope="module")
-def pairs():
+def pairs():            # FE meshes and condensed systems of three levels: about a minute; its users are marked slow
     """Steel cylinder on steel block, the three default mesh levels (h = 0.1, 0.05, 0.025 a_H), condensed once.
     Quasi-identical bodies: Johnson's process (the model's default for this pair)."""
     s = fl.FrictionLineSettings()
@@ -87,6 +87,7 @@ def test_full_meshes_are_mirrored_halves():
         np.testing.assert_allclose(np.sort(xs), -np.sort(xs)[::-1], atol=1e-12 * a)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("ratio", [0.3, 0.6, 0.9])
 def test_cattaneo_stick_zone_and_shift(pairs, ratio):
     """Stick half-width c = a sqrt(1 - Q/(mu W)) within one element of the finest mesh (0.025 a); micro-slip
@@ -99,6 +100,7 @@ def test_cattaneo_stick_zone_and_shift(pairs, ratio):
     assert sh.value == pytest.approx(cattaneo_shift(ratio), rel=0.02)
 
 
+@pytest.mark.slow
 def test_cattaneo_adhered_case_keeps_the_load(pairs):
     """Full adhesion (mu = inf): the tangential pair forces sum to -Q' (on the cylinder) and the normal ones to
     W', to round-off; the pressure peak matches Hertz p0 within 0.3 % (FEM-NOTES: +0.1 % from the finite block)."""
@@ -108,6 +110,7 @@ def test_cattaneo_adhered_case_keeps_the_load(pairs):
     assert r.quantities["p_max"] == pytest.approx(P0, rel=3e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("xr", [-0.5, 0.2, 0.5, 0.9])
 def test_carter_creep_force_and_adhesion(pairs, xr):
     """Steady rolling: creep force within 2 % of Carter (measured <= 0.5 %), adhesion length 2 a (1 - |xi|/xi_s)
@@ -120,6 +123,7 @@ def test_carter_creep_force_and_adhesion(pairs, xr):
     assert abs(L.value - 2 * A_H * (1 - abs(xr))) < P[-1].h
 
 
+@pytest.mark.slow
 def test_carter_with_full_fe_coupling(pairs):
     """Keeping the FE normal-tangential cross-compliances of the finite bodies changes the steel/steel
     creep force by a few 0.1 % only: still within 2 % of Carter on the finest mesh (measured 0.41 %)."""
@@ -127,6 +131,7 @@ def test_carter_with_full_fe_coupling(pairs):
     assert r.quantities["creep_force_x"] == pytest.approx(carter_force(0.5), rel=0.02)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("xr", [1.5, -3.0])
 def test_full_slip_beyond_saturation(pairs, xr):
     """|xi| > xi_s: every contact node slides, F = -mu W sign(xi) exactly (Coulomb), no adhesion."""
@@ -148,6 +153,7 @@ def test_rigid_cylinder_full_slip_coupled():
     assert r.quantities["half_width"] == pytest.approx(a_rigid, rel=0.01)
 
 
+@pytest.mark.slow
 def test_model_entry_point_one_level():
     """model() plumbing on the coarsest mesh (h = 0.1 a): rolling and shift quantities within 2 % of the
     closed forms already (measured 0.7 % and 0.5 %), the kind's quantity names, stats per level."""
@@ -174,6 +180,7 @@ def test_bad_input_names_the_key(extra, key):
     assert err.value.key == key
 
 
+@pytest.mark.slow
 def test_active_set_reports_non_convergence(pairs):
     """An iteration cap below what the problem needs (measured 8 iterations) raises ConvergenceError."""
     p = pairs["johnson"][0]

@@ -109,6 +109,7 @@ def _line_params(layer: Elastic, substrate: Elastic | None, thickness: float, lo
     return p
 
 
+@pytest.mark.slow
 def test_layer_of_the_substrate_material_is_homogeneous_hertz():
     # A layer with the substrate's own E, nu is no layer: Hertz line contact (seed 001 eqs 3-4) for a rigid
     # cylinder, E* = E/(1 - nu^2). Issue 5 asks 1 % on the extrapolated p_max and half-width; measured
@@ -122,6 +123,7 @@ def test_layer_of_the_substrate_material_is_homogeneous_hertz():
     assert len(r.stats["levels"]) == 3 and all(lv["residual"] < 1e-9 for lv in r.stats["levels"])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("t_over_a", [0.1, 0.02])
 def test_thin_compressible_layer_on_rigid_base_matches_johnson(t_over_a):
     # Johnson's thin bonded layer (analytic/thin_layer.py, seed 001 eqs 18-22 with exponent 1/3): issue 5
@@ -137,6 +139,7 @@ def test_thin_compressible_layer_on_rigid_base_matches_johnson(t_over_a):
     assert r.quantities["half_width"] == pytest.approx(ref.a, rel=tol)
 
 
+@pytest.mark.slow
 def test_thin_incompressible_layer_on_rigid_base_tends_to_squeeze_film():
     # nu = 0.5 through the mixed form: the squeeze-film closed form (frictionless top, k = 3G/t^3) is the
     # t/a -> 0 limit; its p_max error is O((t/a)^2): measured +3.4 % at t/a = 0.1 and +0.9 % at 0.05 (issue 5:
@@ -155,6 +158,7 @@ def test_thin_incompressible_layer_on_rigid_base_tends_to_squeeze_film():
     assert errors[1] < 0.015 and errors[1] < 0.5 * errors[0]      # O((t/a)^2): halving t/a quarters it
 
 
+@pytest.mark.slow
 def test_very_thick_layer_is_the_layers_hertz():
     # A layer ten substrate-Hertz widths thick (about 14 contact half-widths here) on steel: the substrate lies
     # beyond the stressed zone and the contact is Hertz with the layer's E1* (seed 001 eqs 3-4). Tolerance 1 %:
@@ -180,6 +184,7 @@ def test_bad_input_names_the_key(key, value):
 # ---------------------------------------------------------------- 3D smoke level
 
 
+@pytest.mark.slow
 def test_3d_thin_layer_on_rigid_base_matches_johnson_circular():
     # Smoke-level 3D check (two coarse levels, a few seconds): rigid sphere on a thin compressible layer
     # bonded to a rigid base, t/a = 0.1, against Johnson's circular thin-layer solution (analytic/thin_layer.py,

@@ -20,6 +20,7 @@ def test_sphere_by_hand():
     assert h.approach == pytest.approx(h.semi_axis_x**2 / 0.01, rel=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("ratio", [1.0, 3.0, 40.0, 500.0])
 def test_elliptic_hertz_satisfies_contact_equations(ratio):
     """Independent check: the displacement of p0 sqrt(1 - x^2/a^2 - y^2/b^2), integrated numerically

@@ -75,6 +75,7 @@ def test_key_changes_with_library_versions(monkeypatch):
     assert provenance.code_digest(roots) != before
 
 
+@pytest.mark.slow
 def test_static_closure_covers_every_module_a_model_loads():
     """Run the hertz-line FE model (coarse levels) in a fresh interpreter and list the femcheck modules it loaded:
     each must be in the static closure its key hashes."""

@@ -56,7 +56,7 @@ def test_flat_roller_has_edge_peaks_at_the_ends(finite):
 
 
 def test_flat_roller_centre_is_grid_converged(femcheck_run, finite):
-    fine = femcheck_run("roller-finite", {"numerics.bem_nx": 65, "numerics.bem_ny": 257}, models=["bem"])
+    fine = femcheck_run("roller-finite", {"numerics.bem_nx": 97, "numerics.bem_ny": 385}, models=["bem"])
     a, b = finite.models["bem"].quantities, fine.models["bem"].quantities
     assert b["p_centre"] == pytest.approx(a["p_centre"], rel=2e-3)
     assert b["approach"] == pytest.approx(a["approach"], rel=2e-3)

@@ -135,6 +135,7 @@ def test_dissimilar_bodies_panagiotopoulos_matches_dense():
     assert np.array_equal(fft.adhesion, dense.adhesion)
 
 
+@pytest.mark.slow
 def test_fine_grid_cattaneo_mindlin():
     # reference: Cattaneo-Mindlin closed form (Johnson 1985 eqs 7.40, 7.42). On a 129^2 grid (a/dx = 59, out of
     # reach of the dense solver) the shift is within 0.3 % and the stick radius within 1 % (the stick area of a
@@ -151,6 +152,7 @@ def test_fine_grid_cattaneo_mindlin():
     assert np.sqrt(sol.adhesion.sum() * g.cell_area / np.pi) == pytest.approx(m.stick_radius, rel=0.01)
 
 
+@pytest.mark.slow
 def test_creep_coefficients_on_fine_grids_match_kalker():
     # reference: Kalker (1990) Table E.3 (CONTACT's linrol): a/b = 5 (b/a = 0.2 row), nu = 0.5: C11 = 8.82,
     # C22 = 9.79, C23 = 7.89 -- the slowest-converging case of the table, extrapolated from 32/64/128 grids

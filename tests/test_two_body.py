@@ -120,6 +120,7 @@ SRB = {"geometry.roller_diameter": 0.0198, "geometry.crown_radius": 0.1003, "geo
        "materials.ring.nu": 0.3}
 
 
+@pytest.mark.slow
 def test_srb_conformal_inner_semi_axes_vs_elliptic_hertz():
     # seed 000 inner raceway (roller on the real ring segment), coarse mesh (0.5 a_H): the semi-axes must be within
     # issue 4's 5 % of elliptic Hertz with srb_contact's radii (measured -2.2 % / -2.5 %; at 0.7 a_H the short

@@ -88,6 +88,7 @@ def _square(v):
     return v * v
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_matches_local(scene, small_map):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) \
@@ -100,12 +101,14 @@ def test_dask_local_cluster_matches_local(scene, small_map):
                                                                          rel=1e-12)
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_is_an_input_error():
     pytest.importorskip("distributed")
     with pytest.raises(InputError, match="--scheduler"):
         map_cases(_square, [1, 2], scheduler="tcp://127.0.0.1:1")
 
 
+@pytest.mark.slow
 def test_cli_map_writes_report(tmp_path):
     out = tmp_path / "m"
     r = subprocess.run([sys.executable, "-m", "femcheck.cli", "map", "hertz-line", "--x",

@@ -20,7 +20,7 @@ from ..errors import ConvergenceError, InputError
 from ..geometry.profiles import indented, paraboloid
 from ..materials import effective_modulus
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem")
 
@@ -34,8 +34,7 @@ SCHEMA: dict[str, Key] = {
                         lo_closed=True, hi_closed=True),
     **material_keys("body1"),
     **material_keys("body2"),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "reference models", choices=MODEL_NAMES),
+    **model_keys(MODEL_NAMES),
     "numerics.bem_cells": Key("int", "-", "BEM cells per side (odd)", lo=33, hi=1025, lo_closed=True,
                               hi_closed=True),
     "numerics.bem_domain": Key("float", "a", "BEM half-side / Hertz radius", lo=1.2, hi=5.0, hi_closed=True),

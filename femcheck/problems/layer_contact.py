@@ -40,7 +40,7 @@ from ..fem import layered_line, layered_point
 from ..errors import ConvergenceError, InputError
 from ..qoi import contact_edge
 from ..result import ModelResult
-from ..scene import Key, Scene, tolerance_key
+from ..scene import Key, Scene, model_keys, tolerance_key
 
 MODEL_NAMES = ("bem", "thin_layer", "analytic", "fem")
 
@@ -72,8 +72,7 @@ SCHEMA: dict[str, Key] = {
     "materials.substrate.E": Key("float", "Pa", "Young's modulus of the substrate E2", lo=0.0),
     "materials.substrate.nu": Key("float", "-", "Poisson's ratio of the substrate", lo=-1.0, hi=0.5),
     "materials.substrate.rigid": Key("bool", "-", "rigid base under the layer (E2, nu2 ignored)"),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against", choices=MODEL_NAMES),
+    **model_keys(MODEL_NAMES),
     "numerics.bem_elements": Key("int", "-", "BEM strips over the domain (line)", lo=32, hi=2**18,
                                  lo_closed=True, hi_closed=True),
     "numerics.bem_cells": Key("int", "-", "BEM cells per side (point; odd puts a cell on the centre)", lo=9,

@@ -17,7 +17,8 @@ from ..fem.line_contact import FEMLineSettings, extrapolate, solve_level
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, fem_line_mesh_keys, material_keys, tolerance_key
+from ..scene import (Key, Scene, check_body_pair, elastic, fem_line_mesh_keys, material_keys, model_keys,
+                     tolerance_key)
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1   # beyond this the half-space and small-strain assumptions of every model here fail
@@ -28,9 +29,7 @@ SCHEMA: dict[str, Key] = {
     **material_keys("cylinder"),
     **{k: v for k, v in material_keys("block").items() if not k.endswith("rigid")},
     "outputs.subsurface_stress": Key("bool", "-", "compute the sub-surface stress field (analytic)"),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against",
-                             choices=("analytic", "fem")),
+    **model_keys(MODEL_NAMES),
     "numerics.bem_elements": Key("int", "-", "BEM strips over the domain", lo=16, hi=2**20, lo_closed=True,
                                  hi_closed=True),
     "numerics.bem_domain": Key("float", "a_H", "BEM domain half-length / Hertz half-width", lo=1.05, hi=20.0,

@@ -27,7 +27,7 @@ from ..fem import friction_line
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "fem")
 MAX_A_OVER_R = 0.1       # half-space and small-strain limit, as for hertz-line
@@ -46,9 +46,7 @@ SCHEMA: dict[str, Key] = {
                          lo_closed=True, hi_closed=True),
     "kinematics.speed": Key("float", "m/s", "rolling speed V (scales slip velocities and frictional power)",
                             lo=0.0),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against",
-                             choices=("analytic", "exact", "fem")),
+    **model_keys(MODEL_NAMES),
     "numerics.exact_elements": Key("int", "-", "strips of the exact solver over the domain", lo=20, hi=4096,
                                    lo_closed=True, hi_closed=True),
     "numerics.exact_domain": Key("float", "a_H", "exact-solver domain half-length / Hertz half-width", lo=1.02,

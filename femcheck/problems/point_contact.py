@@ -20,7 +20,7 @@ from ..fem import point_contact as fem_point
 from ..materials import effective_modulus
 from ..qoi import ellipse_fit
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1
@@ -36,8 +36,7 @@ SCHEMA: dict[str, Key] = {
     **material_keys("body2"),
     "outputs.subsurface_stress": Key("bool", "-", "compute sub-surface stresses (BEM field; analytic: sphere "
                                      "axis closed form)"),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against", choices=("analytic",)),
+    **model_keys(MODEL_NAMES),
     "numerics.bem_cells": Key("int", "-", "BEM cells per side (odd: a cell sits on the centre)", lo=9,
                               hi=4097, lo_closed=True, hi_closed=True),
     "numerics.bem_domain": Key("float", "a_H", "BEM half-side / Hertz semi-axis (each direction)", lo=1.05,

@@ -32,7 +32,7 @@ from ..cect.influence import combined_constants
 from ..errors import InputError
 from ..qoi import ellipse_fit
 from ..result import ModelResult
-from ..scene import Key, Scene, check_body_pair, elastic, material_keys, tolerance_key
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "strip")
 ROLLING_ONLY = ("linear", "fastsim", "full_slip", "strip")
@@ -56,9 +56,7 @@ SCHEMA: dict[str, Key] = {
     "kinematics.phi": Key("float", "1/m", "spin creepage", lo=-1e4, hi=1e4, lo_closed=True, hi_closed=True),
     "kinematics.speed": Key("float", "m/s", "rolling speed V (scales slip velocities and frictional power)",
                             lo=0.0),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against",
-                             choices=("analytic", "exact")),
+    **model_keys(MODEL_NAMES),
     "numerics.exact_cells": Key("int", "-", "exact solver: elements per axis of the potential contact grid "
                                 f"(dense solver: at most {MAX_DENSE_CELLS})", lo=9, hi=513, lo_closed=True,
                                 hi_closed=True),
@@ -236,12 +234,15 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
                                     2.0 * (2.0 - cc.poisson) / cc.shear_modulus)
     q.update(shift=float(np.sign(p["load.tangential"]) * m.shift), stick_radius=m.stick_radius,
              creep_force_x=-p["load.tangential"])
-    r = np.linspace(0.0, 1.1 * m.contact_radius, 301)
+    # the centre line y = 0 across the whole contact, as the exact model's fields; the traction is the friction
+    # force on body 1, which opposes load.tangential (the sign of creep_force_x)
+    x = np.linspace(-1.1 * m.contact_radius, 1.1 * m.contact_radius, 601)
     stats = {"problem": "shift", "E_star": h.modulus}
     if abs(cc.coupling) > QUASI_IDENTICAL_TOL:
         stats["note"] = f"dissimilar bodies (K = {cc.coupling:.3g}): Mindlin neglects the normal-tangential coupling"
     return ModelResult("analytic", quantities=q, stats=stats,
-                       fields={"x": r, "pressure": h.pressure(r, 0 * r), "traction_x": m.traction(r)})
+                       fields={"x": x, "pressure": h.pressure(x, 0 * x),
+                               "traction_x": -np.sign(p["load.tangential"]) * m.traction(np.abs(x))})
 
 
 def _coefficients(params: dict[str, Any]):

@@ -19,7 +19,7 @@ from typing import Any, Callable
 from ..fem import srb_conformal
 from ..geometry.srb import radii
 from ..result import ModelResult
-from ..scene import Key, Scene, build_scene, check_body_pair, material_keys, tolerance_key
+from ..scene import Key, Scene, build_scene, check_body_pair, material_keys, model_keys, tolerance_key
 from . import point_contact
 
 CONTACTS = ("inner", "outer")
@@ -35,8 +35,7 @@ SCHEMA: dict[str, Key] = {
     "load.normal": Key("float", "N", "roller normal load N on each raceway", lo=0.0),
     **material_keys("roller"),
     **material_keys("ring"),
-    "models.run": Key("list", "-", "models to run", choices=MODEL_NAMES),
-    "models.references": Key("list", "-", "models every other model is compared against", choices=MODEL_NAMES),
+    **model_keys(MODEL_NAMES),
     **{k: v for k, v in point_contact.SCHEMA.items() if k.startswith("numerics.") and "stress" not in k},
     **srb_conformal.FEM_SCHEMA,
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),

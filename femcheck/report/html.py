@@ -12,8 +12,11 @@ from typing import Any
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from .. import __version__
-from ..result import RunResult
-from . import kinds, pictures, plots
+from ..compare import certificates
+from ..result import VERDICTS, RunResult
+from . import charts, dashboard, fe_plots, kinds, pictures, plots
+from .sources import cite
+from .units import unit_of
 
 
 def _fmt(v: Any) -> str:
@@ -24,10 +27,18 @@ def _fmt(v: Any) -> str:
     return str(v)
 
 
+def _pct(v: Any) -> str:
+    if v is None:
+        return "-"
+    return f"{100 * v:.2g} %" if 100 * v < 10 else f"{100 * v:.3g} %"
+
+
 def _env() -> Environment:
     env = Environment(loader=PackageLoader("femcheck", "report/templates"), autoescape=select_autoescape())
     env.filters["fmt"] = _fmt
-    env.filters["pct"] = lambda v: "-" if v is None else f"{100 * v:.3g} %"
+    env.filters["pct"] = _pct
+    env.filters["cite"] = lambda text: cite(str(text or ""))
+    env.filters["unit"] = lambda q, run: unit_of(q, run.params, run.kind)
     return env
 
 
@@ -52,29 +63,47 @@ class AtomicDir:
 
 
 def summary(runs: list[RunResult], title: str, elapsed_s: float) -> dict[str, Any]:
+    """``summary.json``: overall pass, the verdicts (``validity``: one object per scene, model, reference and
+    quantity) and every scene's run (the ``--json`` object of ``femcheck run``) with its pass and problems."""
     return {"title": title, "femcheck_version": __version__, "created": time.strftime("%Y-%m-%dT%H:%M:%S"),
             "elapsed_s": elapsed_s, "passed": all(r.passed for r in runs),
-            "scenes": [{**r.to_json(), "passed": r.passed} for r in runs]}
+            "validity": dashboard.validity(runs),
+            "scenes": [{**r.to_json(), "passed": r.passed, "problems": r.problems} for r in runs]}
+
+
+def _figures(r: RunResult, tmp: Path, prefix: str) -> dict[str, Any]:
+    figs: dict[str, Any] = {"pressure": plots.pressure_overlay(r, tmp / f"{prefix}-pressure.png"),
+                            "convergence": fe_plots.convergence(r, tmp / f"{prefix}-convergence.png")}
+    for key, fn in (("traction", plots.traction_overlay), ("adhesion", plots.adhesion_map),
+                    ("axial", plots.axial_profile), ("map", plots.pressure_map), ("mesh", fe_plots.fem_mesh),
+                    ("stress", plots.stress_field)):
+        name = fn(r, tmp / f"{prefix}-{key}.png")
+        if name:
+            figs[key] = name
+    figs.update(pictures.fem_views(r, tmp, prefix))
+    return figs
 
 
 def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float) -> Path:
-    """Write ``out/index.html``, ``out/summary.json`` and the figures; returns the index path."""
+    """Write ``out/index.html`` (the validity dashboard first, then one section per scene), ``out/summary.json``
+    and the figures; returns the index path."""
     with AtomicDir(out) as tmp:
-        scenes = []
+        scenes, rows = [], []
         for i, r in enumerate(runs):
-            figs = {}
-            for key, fn in (("pressure", plots.pressure_overlay), ("traction", plots.traction_overlay),
-                            ("adhesion", plots.adhesion_map), ("axial", plots.axial_profile),
-                            ("map", plots.pressure_map), ("mesh", plots.fem_mesh),
-                            ("convergence", plots.fem_convergence), ("stress", plots.stress_field)):
-                name = fn(r, tmp / f"{i:02d}-{r.scene}-{key}.png")
-                if name:
-                    figs[key] = name
-            figs.update(pictures.fem_views(r, tmp, f"{i:02d}-{r.scene}"))
-            scenes.append({"run": r, "figs": figs, "extra": kinds.section(r, tmp, f"{i:02d}-{r.scene}")})
+            prefix = f"{i:02d}-{r.scene}"
+            scene_rows = dashboard.rows(r)
+            rows += scene_rows
+            fem = r.models.get("fem")
+            scenes.append({"run": r, "rows": scene_rows, "figs": _figures(r, tmp, prefix),
+                           "certificates": certificates(fem) if fem is not None and fem.status == "ok" else {},
+                           "extra": kinds.section(r, tmp, prefix)})
+        chart = charts.cost_error(rows, tmp / "dashboard-cost-error.png")
         data = summary(runs, title, elapsed_s)
         (tmp / "summary.json").write_text(json.dumps(data, indent=1))
-        html = _env().get_template("index.html.j2").render(title=title, scenes=scenes, summary=data)
+        by_verdict = {v: sum(x["verdict"] == v for x in data["validity"]) for v in reversed(VERDICTS)}
+        counts = {"total": len(data["validity"]), "by_verdict": {v: n for v, n in by_verdict.items() if n}}
+        html = _env().get_template("index.html.j2").render(title=title, scenes=scenes, summary=data, chart=chart,
+                                                           counts=counts)
         (tmp / "index.html").write_text(html)
     return Path(out) / "index.html"
 
@@ -82,7 +111,7 @@ def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float)
 def write_map_report(vmap, out: Path, elapsed_s: float) -> Path:
     """Write ``out/index.html``, ``out/map.json`` and one heat map per (model, reference, quantity)."""
     with AtomicDir(out) as tmp:
-        figs = [plots.validity_heatmap(vmap, c, tmp / f"map-{c[0]}-vs-{c[1]}-{c[2]}.png".replace("@", "_"))
+        figs = [charts.validity_heatmap(vmap, c, tmp / f"map-{c[0]}-vs-{c[1]}-{c[2]}.png".replace("@", "_"))
                 for c in vmap.comparisons()]
         data = {"femcheck_version": __version__, "created": time.strftime("%Y-%m-%dT%H:%M:%S"),
                 "elapsed_s": elapsed_s, **vmap.to_json()}

@@ -8,7 +8,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.tri import Triangulation  # noqa: E402
 
 from ..result import RunResult  # noqa: E402
 
@@ -24,29 +23,60 @@ def _save(fig, path: Path) -> str:
     return path.name
 
 
+# ---- which contact a field belongs to ---------------------------------------------------------------------------
+def parts(run: RunResult) -> list[tuple[str, str]]:
+    """(field suffix, label) of each contact the run's fields describe. A scene of several contacts (the two
+    raceways of srb-normal, the coatings of coated-roller) gives the first contact's fields as ``x``/``pressure``
+    and the others' as ``x_<part>``/``pressure_<part>``; the quantities name every part (``p_max_<part>``)."""
+    fields = {k for m in run.models.values() for k in m.fields}
+    others = sorted({k[len("pressure_"):] for k in fields if k.startswith("pressure_")
+                     and f"x_{k[len('pressure_'):]}" in fields})
+    named = {q.rpartition("_")[2] for m in run.models.values() for q in m.quantities
+             if q.startswith(("p_max_", "half_width_", "semi_axis_x_"))}
+    first = sorted(named - set(others))
+    label = (lambda p: {"inner": "inner raceway", "outer": "outer raceway"}.get(
+        p, f"coating {p}" if run.kind == "layer_contact" else p))
+    if not others:
+        return [("", label(first[0]) if len(first) == 1 else "")]
+    return [("", label(first[0]) if len(first) == 1 else "first contact")] + [(f"_{p}", label(p)) for p in others]
+
+
+def singular_note(run: RunResult) -> str:
+    """'' or why colour scales and tables must not be set by a quantity: one that grows with refinement."""
+    grows = [q for q, why in run.not_compared.items() if "refinement" in why]
+    return f"{', '.join(grows)} grows with refinement by nature" if grows else ""
+
+
 def _overlay(run: RunResult, path: Path, x_field: str, p_field: str, xlabel: str, ylabel: str, title: str,
-             positive_x: bool = False) -> str | None:
+             positive_x: bool = False, suffix: str = "", part: str = "") -> str | None:
     """Profiles ``p_field`` against ``x_field`` of every ok model that has them, on one axis (mm, GPa)."""
-    models = {k: m for k, m in run.models.items() if m.status == "ok" and p_field in m.fields}
+    xf, pf = x_field + suffix, p_field + suffix
+    models = {k: m for k, m in run.models.items() if m.status == "ok" and pf in m.fields and xf in m.fields}
     if not models:
         return None
     fig, ax = plt.subplots(figsize=(6.4, 3.7))
     for name, m in models.items():
-        x, p = m.fields[x_field], m.fields[p_field]
+        x, p = m.fields[xf], m.fields[pf]
         keep = x >= 0 if positive_x else np.ones(x.shape, dtype=bool)
         ax.plot(x[keep] * 1e3, p[keep] / 1e9, label=name, **STYLE.get(name, {}))
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.set_title(f"{run.scene}: {title}")
+    ax.set_title(f"{run.scene}: {title}" + (f" ({part})" if part else ""))
     ax.legend()
     ax.grid(alpha=0.3)
     return _save(fig, path)
 
 
-def pressure_overlay(run: RunResult, path: Path) -> str | None:
-    """Pressure profiles across the contact (x >= 0; the profiles are symmetric)."""
-    return _overlay(run, path, "x", "pressure", "x (mm)", "contact pressure (GPa)", "pressure profiles",
-                    positive_x=True)
+def pressure_overlay(run: RunResult, path: Path) -> list[str]:
+    """Pressure profiles across the contact (x >= 0; the profiles are symmetric), one figure per contact."""
+    out = []
+    for suffix, part in parts(run):
+        p = path.with_name(path.stem + suffix + path.suffix)
+        name = _overlay(run, p, "x", "pressure", "x (mm)", "contact pressure (GPa)", "pressure profiles",
+                        positive_x=True, suffix=suffix, part=part)
+        if name:
+            out.append(name)
+    return out
 
 
 def axial_profile(run: RunResult, path: Path) -> str | None:
@@ -55,25 +85,48 @@ def axial_profile(run: RunResult, path: Path) -> str | None:
                     "axial pressure profile")
 
 
+def _map_figure(x: np.ndarray, y: np.ndarray) -> tuple:
+    """A figure whose map axis keeps equal scales (a 1:40 ellipse looks 1:40): horizontal y, vertical x (mm)."""
+    width, height = float(np.ptp(y)) or 1.0, float(np.ptp(x)) or 1.0
+    ax_w = 5.6
+    ax_h = float(np.clip(ax_w * height / width, 0.25, 4.5))
+    fig, ax = plt.subplots(figsize=(ax_w + 1.4, ax_h + 1.5))
+    ax.set_aspect("equal")
+    if ax_h < 1.0:                   # a thin strip: its two ends only
+        ends = [float(x.min()) * 1e3, float(x.max()) * 1e3]
+        ax.set_yticks(ends, [f"{v:.2g}" for v in ends], fontsize=7)
+    return fig, ax
+
+
 def pressure_map(run: RunResult, path: Path) -> str | None:
-    """The contact pressure field of the first model that has one (footprint)."""
+    """The contact pressure field of the first model that has one (footprint), equal axes. Where a quantity
+    grows with refinement (a peak at a sharp edge), the colour scale stops at the 99th percentile of the loaded
+    cells instead of at that grid-dependent peak, and says so."""
     m = next((m for m in run.models.values() if m.status == "ok" and "pressure_map" in m.fields
               and "map_x" in m.fields), None)
     if m is None:
         return None
     x, y, p = m.fields["map_x"], m.fields["map_y"], m.fields["pressure_map"]
-    fig, ax = plt.subplots(figsize=(6.4, 3.4))
-    cs = ax.pcolormesh(y * 1e3, x * 1e3, p / 1e9, shading="nearest", cmap="magma")
-    fig.colorbar(cs, ax=ax, label="pressure (GPa)")
+    fig, ax = _map_figure(x, y)
+    note = singular_note(run)
+    vmax = float(np.percentile(p[p > 0], 99)) if note and np.any(p > 0) else float(p.max())
+    cs = ax.pcolormesh(y * 1e3, x * 1e3, p / 1e9, shading="nearest", cmap="magma", vmin=0, vmax=vmax / 1e9)
+    cb = fig.colorbar(cs, ax=ax, label="pressure (GPa)", orientation="horizontal", pad=0.25,
+                      extend="max" if note else "neither")
+    if note:
+        cb.set_label(f"pressure (GPa); scale clipped at the 99th percentile ({note})", fontsize=7)
     ax.set_xlabel("y (mm)")
     ax.set_ylabel("x (mm)")
-    ax.set_title(f"{run.scene}: contact pressure ({m.model})")
+    part = parts(run)[0][1]
+    ax.set_title(f"{run.scene}: contact pressure ({m.model}" + (f", {part}" if part else "") + "; equal axes)",
+                 fontsize=9)
     return _save(fig, path)
 
 
 def traction_overlay(run: RunResult, path: Path) -> str | None:
     """Tangential traction along the rolling direction (2D: the whole profile; 3D: the centre line y = 0) of
-    every model that has one, with the traction bound mu p of the first such model."""
+    every model that has one, with the traction bound mu p of the first such model. Tractions are those on
+    body 1 (the cylinder, the ball), as the creep forces."""
     models = {k: m for k, m in run.models.items() if m.status == "ok" and "x" in m.fields
               and ("traction" in m.fields or "traction_x" in m.fields)}
     if not models:
@@ -88,8 +141,9 @@ def traction_overlay(run: RunResult, path: Path) -> str | None:
         sign = -1.0 if np.sum(first.fields.get("traction", first.fields.get("traction_x"))) < 0 else 1.0
         ax.plot(first.fields["x"] * 1e3, sign * mu * first.fields["pressure"] / 1e9, color="0.6", lw=0.8,
                 ls=":", label="traction bound mu p")
-    ax.set_xlabel("x, rolling direction (mm)")
-    ax.set_ylabel("tangential traction (GPa)")
+    three_d = any("traction_x" in m.fields for m in models.values())
+    ax.set_xlabel("x, rolling direction (mm)" + (", centre line y = 0" if three_d else ""))
+    ax.set_ylabel("tangential traction on body 1 (GPa)")
     ax.set_title(f"{run.scene}: tangential traction")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -103,63 +157,12 @@ def adhesion_map(run: RunResult, path: Path) -> str | None:
         return None
     x, y = m.fields["map_x"], m.fields["map_y"]
     state = np.where(m.fields["pressure_map"] > 0, 1.0 + m.fields["adhesion_map"], 0.0)   # 0 out, 1 slip, 2 stick
-    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    fig, ax = _map_figure(x, y)
     cmap = matplotlib.colors.ListedColormap(["white", "tab:orange", "tab:blue"])
     ax.pcolormesh(y * 1e3, x * 1e3, state, shading="nearest", cmap=cmap, vmin=-0.5, vmax=2.5)
     ax.set_xlabel("y (mm)")
     ax.set_ylabel("x, rolling direction (mm)")
-    ax.set_title(f"{run.scene}: adhesion (blue) and slip (orange) areas ({m.model})")
-    return _save(fig, path)
-
-
-def fem_mesh(run: RunResult, path: Path) -> str | None:
-    """The FE mesh near the contact (finest level), coloured by body."""
-    m = run.models.get("fem")
-    if m is None or m.status != "ok":
-        return None
-    bodies = [b for b in ("block", "cylinder") if f"mesh_{b}_points" in m.fields]
-    if not bodies:
-        return None
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for body, colour in zip(bodies, ("tab:blue", "tab:red")):
-        pts, tri = m.fields[f"mesh_{body}_points"], m.fields[f"mesh_{body}_triangles"]
-        ax.triplot(Triangulation(pts[0] * 1e3, pts[1] * 1e3, tri.T), lw=0.25, color=colour, label=body)
-    a = m.quantities.get("half_width", 1e-3)
-    ax.set_xlim(0, 3 * a * 1e3)
-    ax.set_ylim(-2 * a * 1e3, 1 * a * 1e3)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    ax.set_title("FE mesh near the contact (finest level, symmetric half)")
-    ax.legend(loc="lower right")
-    return _save(fig, path)
-
-
-def fem_convergence(run: RunResult, path: Path) -> str | None:
-    """Per mesh level: |q - q_extrapolated| / q_extrapolated (the discretisation error, solid) and the error
-    against the analytic solution (dashed), which levels off at the modelling difference (finite block)."""
-    m = run.models.get("fem")
-    if m is None or m.status != "ok" or "richardson" not in m.stats:
-        return None
-    levels = m.stats["levels"]
-    h = np.array([lv["h_over_a"] for lv in levels])
-    fig, ax = plt.subplots(figsize=(5.6, 3.9))
-    ref = run.models.get("analytic")
-    colours = ("tab:blue", "tab:orange", "tab:green", "tab:red")
-    for q, colour in zip(m.stats["richardson"], colours):
-        vals = np.array([lv[q] for lv in levels])
-        rich = m.stats["richardson"][q]
-        if rich["order"] is not None:      # no asymptotic order: there is no extrapolated value to show
-            ax.loglog(h, np.abs(vals / rich["value"] - 1), marker="o", color=colour,
-                      label=f"{q} vs extrapolated (order {rich['order']:.2f})")
-        if ref is not None and ref.status == "ok" and q in ref.quantities:
-            ax.loglog(h, np.maximum(np.abs(vals / ref.quantities[q] - 1), 1e-9), marker="s", ls="--",
-                      color=colour, alpha=0.6, label=f"{q} vs analytic")
-    ax.set_xlabel("element size on the contact / a")
-    ax.set_ylabel("relative difference")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    ax.set_title("FEM mesh convergence")
+    ax.set_title(f"{run.scene}: adhesion (blue) and slip (orange) areas ({m.model}; equal axes)", fontsize=9)
     return _save(fig, path)
 
 
@@ -183,70 +186,4 @@ def stress_field(run: RunResult, path: Path) -> str | None:
     axes[0].invert_yaxis()
     axes[0].set_ylabel("depth z (mm)")
     fig.suptitle(f"{run.scene}: sub-surface stresses ({m.model})")
-    return _save(fig, path)
-
-
-def time_error(rows: list[dict], path: Path, title: str) -> str:
-    """Log-log run time against error, one line per model and quantity (bench): left against the analytic
-    solution, right against the model's own finest setting (discretisation error alone)."""
-    fig, axes = plt.subplots(1, 2, figsize=(11.5, 4.4), sharey=True)
-    names = list(dict.fromkeys(k[4:] for r in rows for k in r
-                               if k.startswith("err_") and not k.startswith("err_self_")))
-    for ax, prefix, label in ((axes[0], "err_", "error vs analytic"),
-                              (axes[1], "err_self_", "change vs own finest setting")):
-        quantities = [q for q in names if prefix == "err_" or not q.startswith("pressure_profile")]
-        for model in sorted({r["model"] for r in rows}):
-            for q in quantities:
-                mk = {"p_max": "o", "half_width": "s"}.get(q, "^")
-                pts = [(r["time_s"], r[prefix + q]) for r in rows if r["model"] == model and r.get(prefix + q)]
-                if pts:
-                    t, e = zip(*pts)
-                    ax.loglog(t, e, marker=mk, label=f"{model}: {q}")
-        ax.set_xlabel("run time (s)")
-        ax.set_title(label)
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
-    axes[0].set_ylabel("relative error")
-    fig.suptitle(title)
-    return _save(fig, path)
-
-
-def _edges(values: tuple[float, ...], log: bool) -> np.ndarray:
-    """Cell edges around grid values: midpoints (geometric on a log axis), the ends extended symmetrically."""
-    v = np.log(values) if log else np.asarray(values, dtype=float)
-    mid = 0.5 * (v[1:] + v[:-1])
-    e = np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
-    return np.exp(e) if log else e
-
-
-def validity_heatmap(vmap, comparison: tuple[str, str, str], path: Path) -> str:
-    """Heat map of log10 |relative error| of one (model, reference, quantity) over the map grid, the region
-    within tolerance outlined in white, grid points without a value (refused / failed) crossed out."""
-    err, ok, tol = vmap.grid(comparison)
-    x, y = np.asarray(vmap.x.values, dtype=float), np.asarray(vmap.y.values, dtype=float)
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    with np.errstate(divide="ignore"):
-        z = np.log10(np.maximum(err, 1e-16))
-    ex, ey = _edges(vmap.x.values, vmap.x.log), _edges(vmap.y.values, vmap.y.log)
-    mesh = ax.pcolormesh(ex, ey, z, cmap="viridis", shading="flat")
-    fig.colorbar(mesh, ax=ax, label="log10 relative error")
-    # outline of the region within tolerance: every edge between a passing cell and anything else
-    inside = np.pad(ok == 1.0, 1)
-    for iy, ix in zip(*np.nonzero(inside[1:-1, 1:-1])):
-        i, j = iy + 1, ix + 1
-        for di, dj, xs, ys in ((-1, 0, ex[ix:ix + 2], [ey[iy]] * 2), (1, 0, ex[ix:ix + 2], [ey[iy + 1]] * 2),
-                               (0, -1, [ex[ix]] * 2, ey[iy:iy + 2]), (0, 1, [ex[ix + 1]] * 2, ey[iy:iy + 2])):
-            if not inside[i + di, j + dj]:
-                ax.plot(xs, ys, "w-", lw=2.2)
-    for iy, ix in zip(*np.nonzero(np.isnan(err))):
-        ax.plot(x[ix], y[iy], "rx", ms=7)
-    if vmap.x.log:
-        ax.set_xscale("log")
-    if vmap.y.log:
-        ax.set_yscale("log")
-    ax.set_xlabel(vmap.x.key)
-    ax.set_ylabel(vmap.y.key)
-    model, ref, q = comparison
-    tol_txt = f"tolerance {tol:.3g} (white: within)" if tol is not None else "no tolerance set"
-    ax.set_title(f"{vmap.scene}: {model} vs {ref}, {q}\n{tol_txt}; x: no value", fontsize=9)
     return _save(fig, path)
