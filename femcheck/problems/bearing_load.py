@@ -32,7 +32,7 @@ from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 
-MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem")
+MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "measured")
 LAWS = ("power", "palmgren", "iso16281", "plane_strain")
 MAX_PRELOAD = 0.01          # |P_d| / D: beyond, the rollers would overlap the raceways by more than small strain
 ALTERNATIVES: tuple = ()
@@ -380,8 +380,22 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("fem", quantities=q, stats=stats, fields=fields)
 
 
+def measured(scene: Scene, progress=None) -> ModelResult:
+    """The row shares measured on the mill (seed 003 Table 3, ``paper.row_shares_measured``, %): a reference
+    of measured data, not a model; skipped where the scene gives none."""
+    shares = scene.get("paper.row_shares_measured")
+    if not shares:
+        return ModelResult("measured", "skipped", error="the scene gives no paper.row_shares_measured")
+    if len(shares) != scene["bearing.rows"]:
+        raise InputError("paper.row_shares_measured", f"{len(shares)} values for {scene['bearing.rows']} rows; "
+                                                      "allowed: one share per row")
+    return ModelResult("measured", quantities={f"row_share_{r + 1}": float(v) for r, v in enumerate(shares)},
+                       stats={"source": "Yang et al. 2016, Table 3 (measured on the mill)"},
+                       fields={"row_shares": np.asarray(shares, dtype=float)})
+
+
 MODELS: dict[str, Callable[..., ModelResult]] = {"rigid_ring": rigid_ring, "integral": integral,
-                                                 "condensed": condensed, "fem": fem}
+                                                 "condensed": condensed, "fem": fem, "measured": measured}
 STRESS_QUANTITIES = ("q_max", "roller_loads_max")
 
 
