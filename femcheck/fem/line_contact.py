@@ -8,9 +8,8 @@ import numpy as np
 
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
-from ..qoi import contact_edge
+from ..qoi import edge, peak
 from ..solvers import frictionless
-from ..solvers.convergence import Extrapolation, richardson
 from ..solvers.elasticity2d import CondensedBody, boundary_dofs, make_body
 from ..meshes.plane import MeshSpec, TriMesh, block_half, cylinder_half
 
@@ -131,9 +130,6 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
     if p[-1] > 0:
         raise ConvergenceError("FEM line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
-    return FEMLevel(h, x, p, float(p.max()), contact_edge(x, p), 2.0 * float(sol.lam.sum()), n_dofs, n_el,
+    # peak: local even quartic about the symmetry line; edge: power law with its exponent fitted (femcheck.qoi)
+    return FEMLevel(h, x, p, peak(x, p, centre=0.0).value, edge(x, p).position, 2.0 * float(sol.lam.sum()), n_dofs, n_el,
                     sol.iterations, sol.residual, sol.penetration, time.perf_counter() - t0, meshes, formulations)
-
-
-def extrapolate(levels: list[FEMLevel], quantity: str) -> Extrapolation:
-    return richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])

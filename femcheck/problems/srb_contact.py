@@ -109,6 +109,9 @@ def _both(name: str) -> Callable[..., ModelResult]:
                 fields.update({k: v for k, v in res.fields.items() if k.startswith("view_")})
             if "richardson" in res.stats or "finest" in res.stats:
                 stats.setdefault("finest", {}).update({f"{k}_{c}": v for k, v in res.stats.get("finest", {}).items()})
+            for key in ("certificates", "richardson"):
+                if key in res.stats:
+                    stats.setdefault(key, {}).update({f"{k}_{c}": v for k, v in res.stats[key].items()})
         if any("levels" in stats[c] for c in CONTACTS):
             stats["levels"] = [{**lv, "contact": c, "level": k} for c in CONTACTS
                                for k, lv in enumerate(stats[c].get("levels", []))]

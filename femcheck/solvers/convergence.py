@@ -146,3 +146,21 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     value = finest + (finest - q[-2]) / (r**p - 1.0)
     err = SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0)
     return Certificate(float(value), finest, p, float(err), True, why)
+
+
+def certify_levels(levels: list[dict], names: tuple[str, ...] | list[str], h_key: str = "h",
+                   singular: tuple[str, ...] = (), expected_order: dict[str, float] | None = None
+                   ) -> dict[str, Certificate]:
+    """:func:`certify` for each quantity ``names`` over level dicts (coarse to fine) holding ``h_key`` and the
+    quantities; ``singular`` names the quantities that grow with refinement by nature (peaks at sharp edges)."""
+    h = [lv[h_key] for lv in levels]
+    exp = expected_order or {}
+    return {n: certify(h, [lv[n] for lv in levels], exp.get(n), singular=n in singular) for n in names}
+
+
+def certificate_stats(certs: dict[str, Certificate]) -> dict[str, dict]:
+    """``stats["certificates"]`` and, for the report's convergence plot and older readers,
+    ``stats["richardson"]`` (value, order, finest and the *absolute* error estimate) from certificates."""
+    return {"certificates": {k: c.as_dict() for k, c in certs.items()},
+            "richardson": {k: {"value": c.value, "order": c.order if c.certified else None, "finest": c.finest,
+                               "error_estimate": c.error_estimate * abs(c.value)} for k, c in certs.items()}}
