@@ -52,3 +52,13 @@ def test_inconsistent_orders_over_four_levels_are_not_certified():
 def test_singular_quantity_is_flagged():
     c = certify([1, 0.5, 0.25], [9.1e9, 9.4e9, 9.7e9], singular=True)
     assert not c.certified and "mesh-dependent" in c.note and c.value == 9.7e9
+
+
+def test_levels_that_agree_below_the_floor_are_converged_whatever_the_sign():
+    # layer-line's p_max on four levels (2D P2): 8.894851, 8.894771, 8.894815 (x 1e8 Pa): changes of 1e-5 carry no
+    # order, the quantity no longer sees the mesh
+    c = certify([0.05, 0.025, 0.0125], [8.894851e8, 8.894771e8, 8.894815e8])
+    assert c.certified and c.value == 8.894815e8 and "converged" in c.note
+    assert c.error_estimate == pytest.approx(3 * 8.0e3 / 8.894815e8, rel=1e-6)
+    # the same pattern 50 times larger is an oscillation, not convergence
+    assert not certify([0.05, 0.025, 0.0125], [1.0, 1.0 - 4.5e-4, 1.0 - 2e-4]).certified

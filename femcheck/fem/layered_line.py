@@ -217,6 +217,11 @@ def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     return max(a_layer, a_sub)
 
 
+# The family is aligned on level 1's edge whatever the number of levels (so level 0 is the same mesh and solution
+# when a reference's coarsest level is re-solved alone).
+ALIGN_LEVEL = 1
+
+
 def reference_width(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float,
                     s: FEMLayeredLineSettings, max_pilots: int = 5, align_tol: float = 1e-3,
                     max_align: int = 3) -> tuple[float, list[float]]:
@@ -247,7 +252,7 @@ def reference_width(radius: float, layer: Elastic, substrate: Elastic, thickness
         raise ConvergenceError("FEM layered pilot (contact width)", max_pilots, abs(history[-1] / history[-2] - 1),
                                0.1, "the pilot widths did not settle")
     for _ in range(max_align):
-        edge_ = solve_level(radius, layer, substrate, thickness, load, a, min(1, s.levels - 1), s).half_width
+        edge_ = solve_level(radius, layer, substrate, thickness, load, a, ALIGN_LEVEL, s).half_width
         history.append(edge_)
         moved = abs(edge_ / a - 1.0)
         a = edge_

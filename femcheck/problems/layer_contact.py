@@ -38,7 +38,7 @@ from ..bem import layered
 from ..bem.halfspace import grid as bem_grid
 from ..fem import layered_line, layered_point
 from ..errors import ConvergenceError, InputError
-from ..qoi import half_width
+from ..qoi import half_width, semi_axes
 from ..result import ModelResult
 from ..scene import Key, Scene, tolerance_key
 
@@ -100,7 +100,7 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
-            "reference": True},
+            "reference": True, "coarse": {"numerics.fem_levels": 1}},
 }
 
 LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
@@ -306,8 +306,10 @@ def _bem_one(lp: dict[str, Any], progress=None) -> ModelResult:
         fields = {"x": x, "pressure": r.pressure}
     else:
         y = sol.y
-        q = {"p_max": float(r.pressure.max()), "semi_axis_x": _half_width(x, pline),
-             "semi_axis_y": _half_width(y, r.pressure[x.size // 2, :]), "total_force": r.load}
+        # the estimator of the 3D FE reference (strips along both axes, femcheck.qoi.semi_axes): one definition
+        # of the edge for every model of the scene
+        ax, ay, _ = semi_axes(*np.meshgrid(x, y, indexing="ij"), r.pressure)
+        q = {"p_max": float(r.pressure.max()), "semi_axis_x": ax, "semi_axis_y": ay, "total_force": r.load}
         fields = {"x": x, "pressure": pline, "pressure_map": r.pressure, "map_x": x, "map_y": y}
     if lp.get("outputs.subsurface_stress", False):
         _bem_stress(solid, sol, max(v for k, v in q.items() if k in ("half_width", "semi_axis_x", "semi_axis_y")),

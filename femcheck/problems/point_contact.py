@@ -92,7 +92,9 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-            "reference": True},
+            "reference": True,
+            # the coarsest level alone (femcheck.reference_check re-solves it against the stored reference)
+            "coarse": {"numerics.fem_levels": 1, "numerics.fem_finite_size_check": False}},
 }
 
 

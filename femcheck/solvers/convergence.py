@@ -90,8 +90,13 @@ def _orders(h: list[float], q: list[float]) -> list[float | None]:
     return out
 
 
+# Below this relative change between levels a quantity no longer sees the mesh at the precision of the solvers
+# and estimators (contact tolerance 1e-8 to 1e-10, estimator scatter ~1e-5): differences this small carry no order.
+CONVERGED_FLOOR = 1e-4
+
+
 def certify(h: list[float], q: list[float], expected_order: float | None = None, order_band: float = 2.0,
-            singular: bool = False) -> Certificate:
+            singular: bool = False, floor: float = CONVERGED_FLOOR) -> Certificate:
     """Certificate of a quantity computed on levels of mesh size ``h`` (coarse to fine, constant ratio).
 
     Certified when the last three levels converge monotonically with an observed order p that is consistent:
@@ -100,7 +105,10 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     Then ``value`` = Richardson's extrapolation and ``error_estimate`` = 1.25 |value - finest| / |value|.
     Otherwise ``value`` = finest level and ``error_estimate`` = 3 max(last change) / |finest| (a two-level bound,
     not an extrapolation), and the note says why. ``singular``: the quantity grows with refinement by nature (a
-    peak at a sharp edge); it is never certified.
+    peak at a sharp edge); it is never certified. ``floor``: when the last two changes are both below it
+    (relative), the levels agree to the precision the solvers and estimators resolve; whatever their sign the
+    quantity is certified as converged, ``value`` = finest level, ``error_estimate`` = 3 x the largest of the two
+    changes (Roache's factor without a verified order).
     """
     h = [float(x) for x in h]
     q = [float(x) for x in q]
@@ -127,6 +135,10 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     if q[-1] == q[-2] == q[-3]:
         return Certificate(finest, finest, None, 0.0, False,
                            "the last three levels are equal: the quantity does not see the mesh (a mesh node?)")
+    if bound / SAFETY_UNCERTIFIED < floor:
+        return Certificate(finest, finest, orders[-1], bound, True,
+                           f"converged: the last three levels agree within {bound / SAFETY_UNCERTIFIED:.1e} "
+                           f"(< {floor:g}, below the solvers' and estimators' resolution)")
     if p is None:
         return Certificate(finest, finest, None, bound, False,
                            "the last three levels oscillate: not in the asymptotic range")
