@@ -17,7 +17,8 @@ lam_i / w_i with w_i = int phi_i ds the node's tributary length.
 
 Mesh family: lengths in units of a reference half-width a_ref found by pilot solves on coarse meshes (a layered
 contact's width lies anywhere between the layer's and the substrate's Hertz width, or far below both on a rigid
-base); level k halves every length (nested in the layer), Richardson extrapolation over the last three levels
+base) and aligned so that a vertex lies on the contact edge measured on level 1 (:func:`reference_width`); level k
+halves every length (nested in the layer); per quantity a convergence certificate over the levels
 (:mod:`femcheck.solvers.convergence`). SI units throughout.
 """
 from __future__ import annotations
@@ -337,8 +338,9 @@ def materials_of(params: dict[str, Any]) -> tuple[Elastic, Elastic, float]:
 def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem`` model of the layered line scenes (rigid cylinder on a coated block) from flat parameters:
     ``layer.E|nu|thickness``, ``materials.substrate.E|nu|rigid``, ``geometry.radius``, ``load.per_length`` and
-    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa), half_width (m) Richardson-extrapolated
-    over >= 3 levels (finest values otherwise), total_force (N/m, finest level)."""
+    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa, :func:`femcheck.qoi.peak`), half_width (m,
+    :func:`femcheck.qoi.edge`): the certificate's value (Richardson-extrapolated when the levels are in the
+    asymptotic range, else the finest level), total_force (N/m, finest level)."""
     t_start = time.perf_counter()
     layer, sub, t = materials_of(params)
     R, load = float(params["geometry.radius"]), float(params["load.per_length"])

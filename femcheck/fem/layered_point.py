@@ -18,10 +18,10 @@ Limits (stated, not hidden): P1 tetrahedra only, so nu <= 0.45 in both materials
 substrate converges slower in P1 (shear locking of flat elements) — the levels' observed order and the
 Richardson error estimate in the stats say how far the reference can be trusted in a given case.
 
-Quantities: p_max from a least-squares fit p = c0 + c2 r^2 + c4 r^4 to the nodal pressures over r < a/2
-(P1 nodal reactions scatter node to node on an unstructured face; every closed-form profile here is smooth at
-the centre), semi-axes from :func:`femcheck.fem.layered_line.contact_edge_power` on the nodes of the symmetry
-lines (x axis: y = 0, y axis: x = 0). Levels and Richardson as in :mod:`femcheck.fem.point_contact`.
+Quantities (:func:`femcheck.qoi.symmetric_contact`, no shape assumed; P1 nodal reactions scatter node to node on
+an unstructured face, so each is a local fit over many nodes): p_max, the centre value of an even quartic over
+half the contact; semi-axes, power-law edges with the exponent fitted in strips along the symmetry lines. Per
+quantity a convergence certificate over the levels (stats["certificates"]), as in :mod:`femcheck.fem.point_contact`.
 SI units throughout.
 """
 from __future__ import annotations
@@ -240,8 +240,9 @@ def settings(params: dict[str, Any]) -> FEMLayeredPointSettings:
 def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem`` model of the layered point scenes (rigid sphere on a coated block) from flat parameters:
     ``layer.E|nu|thickness``, ``materials.substrate.E|nu|rigid``, ``geometry.radius``, ``load.normal`` (N) and
-    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa), semi_axis_x, semi_axis_y (m)
-    Richardson-extrapolated over >= 3 levels (finest otherwise), total_force (N, finest level)."""
+    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa), semi_axis_x, semi_axis_y (m): the
+    certificate's value (Richardson-extrapolated when the levels are in the asymptotic range, else the finest
+    level), total_force (N, finest level)."""
     t_start = time.perf_counter()
     layer, sub, t = materials_of(params)
     for name, mat in (("layer.nu", layer), ("materials.substrate.nu", sub)):
