@@ -62,3 +62,9 @@ def test_levels_that_agree_below_the_floor_are_converged_whatever_the_sign():
     assert c.error_estimate == pytest.approx(3 * 8.0e3 / 8.894815e8, rel=1e-6)
     # the same pattern 50 times larger is an oscillation, not convergence
     assert not certify([0.05, 0.025, 0.0125], [1.0, 1.0 - 4.5e-4, 1.0 - 2e-4]).certified
+
+
+def test_a_monotone_sequence_below_the_floor_is_still_extrapolated():
+    h, q = _levels(1.0, 1e-3, 2.0)          # changes of 7.5e-6 and 1.9e-6: below the floor, but asymptotic
+    c = certify(h, q)
+    assert c.certified and c.value == pytest.approx(1.0, rel=1e-12) and "observed order" in c.note

@@ -105,10 +105,10 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     Then ``value`` = Richardson's extrapolation and ``error_estimate`` = 1.25 |value - finest| / |value|.
     Otherwise ``value`` = finest level and ``error_estimate`` = 3 max(last change) / |finest| (a two-level bound,
     not an extrapolation), and the note says why. ``singular``: the quantity grows with refinement by nature (a
-    peak at a sharp edge); it is never certified. ``floor``: when the last two changes are both below it
-    (relative), the levels agree to the precision the solvers and estimators resolve; whatever their sign the
-    quantity is certified as converged, ``value`` = finest level, ``error_estimate`` = 3 x the largest of the two
-    changes (Roache's factor without a verified order).
+    peak at a sharp edge); it is never certified. ``floor``: when the levels are not in the asymptotic range but
+    the last two changes are both below it (relative), they agree to the precision the solvers and estimators
+    resolve, where no order can be observed; the quantity is then certified as converged, ``value`` = finest
+    level, ``error_estimate`` = 3 x the largest of the two changes (Roache's factor without a verified order).
     """
     h = [float(x) for x in h]
     q = [float(x) for x in q]
@@ -135,11 +135,12 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     if q[-1] == q[-2] == q[-3]:
         return Certificate(finest, finest, None, 0.0, False,
                            "the last three levels are equal: the quantity does not see the mesh (a mesh node?)")
-    if bound / SAFETY_UNCERTIFIED < floor:
-        return Certificate(finest, finest, orders[-1], bound, True,
-                           f"converged: the last three levels agree within {bound / SAFETY_UNCERTIFIED:.1e} "
-                           f"(< {floor:g}, below the solvers' and estimators' resolution)")
+    converged = bound / SAFETY_UNCERTIFIED < floor
+    why_floor = (f"converged: the last three levels agree within {bound / SAFETY_UNCERTIFIED:.1e} "
+                 f"(< {floor:g}, below the solvers' and estimators' resolution)")
     if p is None:
+        if converged:
+            return Certificate(finest, finest, None, bound, True, why_floor)
         return Certificate(finest, finest, None, bound, False,
                            "the last three levels oscillate: not in the asymptotic range")
     if expected_order is not None:
@@ -154,6 +155,8 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
             ok = consistent
             why += f", previous triple {orders[-2]:.2f} ({'consistent' if consistent else 'inconsistent'})"
     if not ok:
+        if converged:
+            return Certificate(finest, finest, p, bound, True, why_floor)
         return Certificate(finest, finest, p, bound, False, why + ": not in the asymptotic range")
     value = finest + (finest - q[-2]) / (r**p - 1.0)
     err = SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0)
