@@ -41,7 +41,8 @@ class Edge:
     ``exponent`` (p ~ (a^2 - d^2)^alpha), ``misfit`` (rms of the fit in p over the band, relative to the band's
     largest pressure), ``singular`` (alpha < 0: the pressure is unbounded at the edge), ``points`` used,
     ``fitted`` (False when no power law could be fitted: the position is then the midpoint between the last
-    loaded and the first unloaded sample)."""
+    loaded and the first unloaded sample), ``std`` (m): the standard error of ``position`` from the scatter of
+    the samples about the fit (nonlinear least squares, exponent included; :func:`edge_std`)."""
 
     position: float
     exponent: float
@@ -49,19 +50,22 @@ class Edge:
     singular: bool
     points: int
     fitted: bool = True
+    std: float = float("nan")
 
 
 @dataclass(frozen=True)
 class Peak:
     """A peak pressure ``value`` (Pa) at ``position`` (m), from ``points`` samples; ``singular``: the maximum is
     at a contact edge where the pressure is unbounded, so ``value`` is the largest sample, mesh-dependent by
-    nature; ``misfit`` of the local fit relative to ``value``."""
+    nature; ``misfit`` of the local fit relative to ``value``; ``std`` (Pa): the standard error of ``value`` from
+    the scatter of the samples about the fit."""
 
     value: float
     position: float
     singular: bool
     points: int
     misfit: float = 0.0
+    std: float = float("nan")
 
 
 def _misfit(pred: np.ndarray, p: np.ndarray) -> float:
@@ -141,7 +145,37 @@ def edge(d: np.ndarray, p: np.ndarray, band: float = 0.2, min_points: int = 5, t
     alpha, c, mis = power_law_fit(A, pn, singular, exponent)
     if not (np.isfinite(mis) and c[1] < 0 and 1.0 - c[0] / c[1] > 0):
         return Edge(float(0.5 * (dk + nxt)), alpha, float(mis), singular, int(sel.size), False)
-    return Edge(float(dk * np.sqrt(1.0 - c[0] / c[1])), alpha, float(mis), singular, int(sel.size))
+    std = dk * edge_std(A, pn, alpha, c, fit_exponent=exponent is None)
+    return Edge(float(dk * np.sqrt(1.0 - c[0] / c[1])), alpha, float(mis), singular, int(sel.size), std=std)
+
+
+def edge_std(A: np.ndarray, p: np.ndarray, alpha: float, c: np.ndarray, fit_exponent: bool = True) -> float:
+    """Standard error of the edge t_e = sqrt(1 - c0/c1) (in units of the scaling length) of the model
+    p = (A c)^alpha: Gauss-Newton covariance s^2 (J^T J)^-1 of the parameters (c, and alpha when it was fitted)
+    from the residuals in p, propagated to t_e. A statistical measure of how well the samples fix the edge
+    (node-to-node scatter of FE reactions), not of the discretisation error."""
+    q = A @ c
+    ok = q > 0
+    n = p.size
+    qa = np.where(ok, q, 1.0)
+    pred = np.where(ok, qa**alpha, 0.0)
+    cols = [np.where(ok, alpha * qa ** (alpha - 1.0), 0.0)[:, None] * A]
+    if fit_exponent:
+        cols.append(np.where(ok, pred * np.log(qa), 0.0)[:, None])
+    J = np.hstack(cols)
+    dof = n - J.shape[1]
+    if dof <= 0:
+        return float("nan")
+    s2 = float(np.sum((p - pred) ** 2)) / dof
+    try:
+        cov = s2 * np.linalg.pinv(J.T @ J)
+    except np.linalg.LinAlgError:
+        return float("nan")
+    te = np.sqrt(1.0 - c[0] / c[1])
+    grad = np.zeros(J.shape[1])
+    grad[0] = -0.5 / (te * c[1])                       # d t_e / d c0
+    grad[1] = 0.5 * c[0] / (te * c[1] ** 2)            # d t_e / d c1
+    return float(np.sqrt(max(grad @ cov @ grad, 0.0)))
 
 
 def edges(x: np.ndarray, p: np.ndarray, centre: float = 0.0, **kw) -> tuple[Edge, Edge | None]:
@@ -187,6 +221,11 @@ def semi_axes(X: np.ndarray, Y: np.ndarray, p: np.ndarray, strip: float = 0.5, b
     return out[0], out[1], fits
 
 
+def mean_std(edges_: list[Edge]) -> float:
+    """Standard error (m) of the mean position of independent edge estimates."""
+    return float(np.sqrt(sum(e.std**2 for e in edges_)) / len(edges_))
+
+
 def half_width(x: np.ndarray, p: np.ndarray, centre: float | None = None) -> float:
     """Contact half-width (m) of a 1D profile: half the distance between its two edges (:func:`edge`), about
     the midpoint of the loaded samples (or ``centre``). For a profile on x >= 0 only (symmetric half model,
@@ -202,10 +241,16 @@ def half_width(x: np.ndarray, p: np.ndarray, centre: float | None = None) -> flo
     return r.position if left is None else 0.5 * (r.position + left.position)
 
 
-def _even_fit(cols: list[np.ndarray], p: np.ndarray) -> tuple[np.ndarray, float]:
+def _even_fit(cols: list[np.ndarray], p: np.ndarray) -> tuple[np.ndarray, float, float]:
+    """(coefficients, rms misfit, standard error of the constant term) of a linear least-squares fit."""
     A = np.stack(cols, axis=1)
     c, *_ = np.linalg.lstsq(A, p, rcond=None)
-    return c, _misfit(A @ c, p)
+    r = p - A @ c
+    dof = p.size - A.shape[1]
+    std = float("nan")
+    if dof > 0:
+        std = float(np.sqrt(max(np.sum(r**2) / dof * np.linalg.pinv(A.T @ A)[0, 0], 0.0)))
+    return c, _misfit(A @ c, p), std
 
 
 def centre_value(x: np.ndarray, p: np.ndarray, radius: float, centre: float = 0.0, min_points: int = 5) -> Peak:
@@ -219,8 +264,8 @@ def centre_value(x: np.ndarray, p: np.ndarray, radius: float, centre: float = 0.
     if sel.sum() < min_points:
         sel = np.argsort(np.abs(t))[:min_points]
     u = t[sel] / radius
-    c, mis = _even_fit([np.ones(np.size(u)), u**2, u**4], p[sel])
-    return Peak(float(c[0]), float(centre), False, int(np.size(u)), mis / max(abs(c[0]), 1e-300))
+    c, mis, std = _even_fit([np.ones(np.size(u)), u**2, u**4], p[sel])
+    return Peak(float(c[0]), float(centre), False, int(np.size(u)), mis / max(abs(c[0]), 1e-300), std)
 
 
 def centre_value_2d(X: np.ndarray, Y: np.ndarray, p: np.ndarray, rx: float, ry: float, min_points: int = 12) -> Peak:
@@ -234,8 +279,8 @@ def centre_value_2d(X: np.ndarray, Y: np.ndarray, p: np.ndarray, rx: float, ry: 
     if sel.size < min_points:
         sel = np.argsort(r2)[:min_points]
     x, y = X[sel] / rx, Y[sel] / ry
-    c, mis = _even_fit([np.ones(sel.size), x * x, y * y, x**4, x * x * y * y, y**4], p[sel])
-    return Peak(float(c[0]), 0.0, False, int(sel.size), mis / max(abs(c[0]), 1e-300))
+    c, mis, std = _even_fit([np.ones(sel.size), x * x, y * y, x**4, x * x * y * y, y**4], p[sel])
+    return Peak(float(c[0]), 0.0, False, int(sel.size), mis / max(abs(c[0]), 1e-300), std)
 
 
 def symmetric_contact(X: np.ndarray, Y: np.ndarray, p: np.ndarray, window: float = 0.5, strip: float = 0.5,
@@ -243,13 +288,18 @@ def symmetric_contact(X: np.ndarray, Y: np.ndarray, p: np.ndarray, window: float
     """Peak pressure and semi-axes of a contact symmetric about the x and y axes, from a full field or from a
     quarter model's samples (x, y >= 0): ``p_max`` = :func:`centre_value_2d` over ``window`` times the loaded
     extents (the peak of such a contact is at its centre), ``semi_axis_x``, ``semi_axis_y`` =
-    :func:`semi_axes`; also the edge exponents ``exponent_x``, ``exponent_y`` and the centre fit's misfit."""
+    :func:`semi_axes`; their standard errors ``<q>_std`` (and ``contact_area_std`` of pi a b); the edge exponents
+    ``exponent_x``, ``exponent_y`` and the centre fit's misfit."""
     X, Y, p = (np.asarray(v, dtype=float).ravel() for v in (X, Y, p))
     loaded = p > 0
     ex, ey = np.abs(X[loaded]).max(), np.abs(Y[loaded]).max()
     ax, ay, fits = semi_axes(X, Y, p, strip, band)
     c = centre_value_2d(X, Y, p, window * ax, window * ay)
+    sx = mean_std([e for k, e in fits.items() if k[0] == "x"])
+    sy = mean_std([e for k, e in fits.items() if k[0] == "y"])
     return {"p_max": c.value, "semi_axis_x": ax, "semi_axis_y": ay,
+            "p_max_std": c.std, "semi_axis_x_std": sx, "semi_axis_y_std": sy,
+            "contact_area_std": float(np.pi * ax * ay * np.hypot(sx / ax, sy / ay)),
             "exponent_x": float(np.mean([e.exponent for k, e in fits.items() if k[0] == "x"])),
             "exponent_y": float(np.mean([e.exponent for k, e in fits.items() if k[0] == "y"])),
             "centre_misfit": c.misfit, "loaded_extent_x": float(ex), "loaded_extent_y": float(ey)}
@@ -266,8 +316,8 @@ def value_on_axis(X: np.ndarray, Y: np.ndarray, p: np.ndarray, y0: float, rx: fl
     if sel.size < min_points:
         raise ValueError(f"{sel.size} samples in the window around y = {y0:g} m; need {min_points}")
     x, t = X[sel] / rx, (Y[sel] - y0) / ry
-    c, mis = _even_fit([np.ones(sel.size), x * x, t, t * t, x * x * t], p[sel])
-    return Peak(float(c[0]), float(y0), False, int(sel.size), mis / max(abs(c[0]), 1e-300))
+    c, mis, std = _even_fit([np.ones(sel.size), x * x, t, t * t, x * x * t], p[sel])
+    return Peak(float(c[0]), float(y0), False, int(sel.size), mis / max(abs(c[0]), 1e-300), std)
 
 
 def peak(x: np.ndarray, p: np.ndarray, window: float = 0.5, centre: float | None = None) -> Peak:
@@ -299,12 +349,13 @@ def peak(x: np.ndarray, p: np.ndarray, window: float = 0.5, centre: float | None
         if sel.size < 5:
             sel = np.argsort(np.abs(t))[:5]
         u = t[sel] / w
-        c, mis = _even_fit([np.ones(sel.size), u**2, u**4], p[sel])
+        c, mis, std = _even_fit([np.ones(sel.size), u**2, u**4], p[sel])
         uu = np.linspace(0.0, np.abs(u).max(), 1001)
         val = c[0] + c[1] * uu**2 + c[2] * uu**4
         tt = uu * w
         j = int(np.argmax(val))
-        return Peak(float(val[j]), float(centre + tt[j]), False, int(sel.size), mis / val[j])
+        # the maximum's standard error is taken as the constant term's (exact when the maximum is the centre)
+        return Peak(float(val[j]), float(centre + tt[j]), False, int(sel.size), mis / val[j], std)
     t = x - x[i]
     sel = np.flatnonzero((np.abs(t) < w) & (p > 0))
     if sel.size < 6:

@@ -68,3 +68,18 @@ def test_a_monotone_sequence_below_the_floor_is_still_extrapolated():
     h, q = _levels(1.0, 1e-3, 2.0)          # changes of 7.5e-6 and 1.9e-6: below the floor, but asymptotic
     c = certify(h, q)
     assert c.certified and c.value == pytest.approx(1.0, rel=1e-12) and "observed order" in c.note
+
+
+def test_changes_within_the_scatter_of_the_estimates_certify_nothing():
+    # hertz-point's FE semi-axis along x on three levels looked second-order (order 3.3, GCI 0.04 %) while the
+    # y semi-axis of the same axisymmetric contact differed from it by 0.5 %: the last change (7e-4) was within
+    # the scatter of the edge fits over P1 nodal reactions
+    h = [0.0625, 0.0625 / 2**0.5, 0.03125]
+    q = [3.990091e-4, 3.999419e-4, 4.002399e-4]
+    assert certify(h, q).certified
+    noisy = certify(h, q, sigma=[1.0e-6, 0.8e-6, 0.6e-6])
+    assert not noisy.certified and "scatter" in noisy.note
+    assert noisy.error_estimate >= 2 * 0.6e-6 / 4.002399e-4
+    # the same levels with a scatter ten times smaller than the changes are certified, the error at least 2 sigma
+    sharp = certify(h, q, sigma=[1e-8, 1e-8, 1e-8])
+    assert sharp.certified and sharp.error_estimate >= 2e-8 / 4.0e-4

@@ -86,6 +86,8 @@ class LayeredLineLevel:
     mesh: LayeredTriMesh | None = None
     edge_exponent: float = 0.5        # fitted p ~ (a^2 - x^2)^alpha near the edge
     edge_misfit: float = 0.0
+    p_max_std: float = float("nan")   # standard errors of the fitted quantities (femcheck.qoi)
+    half_width_std: float = float("nan")
 
 
 def inverse_lame_lambda(m: Elastic) -> float:
@@ -200,7 +202,7 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     e, pk = edge(x, p), peak(x, p, centre=0.0)
     return LayeredLineLevel(h, x, p, pk.value, e.position, 2.0 * float(sol.lam.sum()), sol.delta,
                             body.n_dofs, int(mesh.t.shape[1]), lm.layer_rows, sol.iterations, sol.residual,
-                            time.perf_counter() - t0, forms, lm, e.exponent, e.misfit)
+                            time.perf_counter() - t0, forms, lm, e.exponent, e.misfit, pk.std, e.std)
 
 
 def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float) -> float:
@@ -368,6 +370,7 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "levels": [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_dofs": lv.n_dofs,
                     "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
                     "edge_exponent": lv.edge_exponent, "edge_misfit": lv.edge_misfit, "approach": lv.approach,
+                    "p_max_std": lv.p_max_std, "half_width_std": lv.half_width_std,
                     "iterations": lv.iterations, "residual": lv.residual, "total_force": lv.total_force,
                     "time_s": lv.time_s} for lv in levels],
     }

@@ -92,6 +92,7 @@ class LayeredPointLevel:
     x: np.ndarray | None = None        # x-axis contact nodes (m) and their pressures (Pa)
     p: np.ndarray | None = None
     edge_exponent: float = 0.5         # fitted p ~ (a^2 - r^2)^alpha near the edge
+    std: dict[str, float] = field(default_factory=dict)   # standard errors of the fitted quantities
 
 
 def assemble_layered_solid(lm: LayeredTetMesh, materials: dict[int, Elastic]) -> Solid:
@@ -161,7 +162,8 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
         n_elements=int(mesh.tets.shape[1]), layer_rows=lm.layer_rows, active_nodes=int(sol.active.sum()),
         iterations=sol.iterations, cg_iterations=sol.cg_iterations, residual=sol.residual,
         solver=type(lin).__name__, time_s=time.perf_counter() - t0, times=times, x=xc[ox], p=p[ox],
-        edge_exponent=0.5 * (fit["exponent_x"] + fit["exponent_y"]))
+        edge_exponent=0.5 * (fit["exponent_x"] + fit["exponent_y"]),
+        std={k: v for k, v in fit.items() if k.endswith("_std") and k != "contact_area_std"})
 
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y")
@@ -274,7 +276,7 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "levels": [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_nodes": lv.n_nodes,
                     "n_dofs": lv.n_dofs, "n_elements": lv.n_elements,
                     **{q: getattr(lv, q) for q in QUANTITIES}, "p_max_nodal": lv.p_max_nodal,
-                    "approach": lv.approach, "edge_exponent": lv.edge_exponent,
+                    "approach": lv.approach, "edge_exponent": lv.edge_exponent, **lv.std,
                     "active_nodes": lv.active_nodes, "iterations": lv.iterations,
                     "cg_iterations": lv.cg_iterations, "residual": lv.residual, "linear_solver": lv.solver,
                     "total_force": lv.total_force, "time_s": lv.time_s, **lv.times} for lv in levels],

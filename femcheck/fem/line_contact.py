@@ -54,6 +54,7 @@ class FEMLevel:
     time_s: float
     meshes: dict[str, TriMesh] = field(default_factory=dict)
     formulations: dict[str, str] = field(default_factory=dict)
+    std: dict[str, float] = field(default_factory=dict)       # standard errors of the fitted quantities
 
 
 def _tributary_weights(body, dofs: np.ndarray, where) -> np.ndarray:
@@ -131,5 +132,7 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
         raise ConvergenceError("FEM line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
     # peak: local even quartic about the symmetry line; edge: power law with its exponent fitted (femcheck.qoi)
-    return FEMLevel(h, x, p, peak(x, p, centre=0.0).value, edge(x, p).position, 2.0 * float(sol.lam.sum()), n_dofs, n_el,
-                    sol.iterations, sol.residual, sol.penetration, time.perf_counter() - t0, meshes, formulations)
+    pk, e = peak(x, p, centre=0.0), edge(x, p)
+    return FEMLevel(h, x, p, pk.value, e.position, 2.0 * float(sol.lam.sum()), n_dofs, n_el, sol.iterations,
+                    sol.residual, sol.penetration, time.perf_counter() - t0, meshes, formulations,
+                    {"p_max_std": pk.std, "half_width_std": e.std})

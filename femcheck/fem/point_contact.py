@@ -84,6 +84,7 @@ class FEMPointLevel:
     pressure_nodes: np.ndarray | None = None    # (x, y, p) of every candidate node
     u_nodes: np.ndarray | None = None           # (3, N) displacement of every node (m)
     pressure_all: np.ndarray | None = None      # (N,) contact pressure at every node (Pa), 0 off the patch
+    std: dict[str, float] | None = None         # standard errors of the fitted quantities (femcheck.qoi)
 
 
 def solve_level(gap: Gap, block: Elastic, force: float, ax: float, ay: float, level: int, s: FEMPointSettings,
@@ -119,7 +120,8 @@ def solve_level(gap: Gap, block: Elastic, force: float, ax: float, ay: float, le
                          mesh_digest=spec.digest(), solver=c.solver, penetration=c.penetration, time_s=c.time_s,
                          times=c.times,
                          x=xc[axis][order], p=c.p[axis][order], mesh=c.mesh,
-                         pressure_nodes=np.stack([xc, yc, c.p]), u_nodes=c.u_nodes, pressure_all=c.pressure_all)
+                         pressure_nodes=np.stack([xc, yc, c.p]), u_nodes=c.u_nodes, pressure_all=c.pressure_all,
+                         std={k: v for k, v in fit.items() if k.endswith("_std")})
 
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y")
@@ -194,7 +196,7 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "levels": [{"h": lv.h, "h_over_a": lv.h / min(ax, ay), "n_nodes": lv.n_nodes, "n_dofs": lv.n_dofs,
                     "n_elements": lv.n_elements, "mesh_digest": lv.mesh_digest,
                     **{q: getattr(lv, q) for q in QUANTITIES},
-                    "contact_area": float(np.pi * lv.semi_axis_x * lv.semi_axis_y),
+                    "contact_area": float(np.pi * lv.semi_axis_x * lv.semi_axis_y), **(lv.std or {}),
                     "p_max_nodal": lv.p_max_nodal, "approach": lv.approach, "active_nodes": lv.active_nodes,
                     "iterations": lv.iterations, "cg_iterations": lv.cg_iterations, "residual": lv.residual,
                     "linear_solver": lv.solver, "penetration": lv.penetration,

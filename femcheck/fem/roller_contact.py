@@ -73,7 +73,8 @@ def centre_quantities(c: QuarterContact, a: float, L: float) -> dict[str, float]
     strip = c.yc < band
     e = edge(c.xc[strip], c.p[strip], band=0.5, min_points=8, transverse=c.yc[strip])
     end = value_on_axis(c.xc, c.yc, c.p, 0.5 * L - END_DISTANCE * a, 0.5 * a, a)
-    return {"p_centre": centre.value, "half_width": e.position, "edge_exponent": e.exponent, "p_end": end.value}
+    return {"p_centre": centre.value, "half_width": e.position, "edge_exponent": e.exponent, "p_end": end.value,
+            "p_centre_std": centre.std, "half_width_std": e.std, "p_end_std": end.std}
 
 
 def model(params: dict[str, Any], progress=None) -> ModelResult:

@@ -160,7 +160,7 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     stats: dict[str, Any] = {
         "method": s.method, "element_order": s.order, "formulation": fine.formulations, "finest": finest,
         "levels": [{"h": lv.h, "h_over_a": lv.h / h.half_width, "n_dofs": lv.n_dofs,
-                    "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
+                    "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width, **lv.std,
                     "iterations": lv.iterations, "residual": lv.residual, "penetration": lv.penetration,
                     "total_force": lv.total_force, "time_s": lv.time_s} for lv in levels],
         "block": {"width": s.block_width * h.half_width, "depth": s.block_depth * h.half_width},

@@ -96,7 +96,7 @@ CONVERGED_FLOOR = 1e-4
 
 
 def certify(h: list[float], q: list[float], expected_order: float | None = None, order_band: float = 2.0,
-            singular: bool = False, floor: float = CONVERGED_FLOOR) -> Certificate:
+            singular: bool = False, floor: float = CONVERGED_FLOOR, sigma: list[float] | None = None) -> Certificate:
     """Certificate of a quantity computed on levels of mesh size ``h`` (coarse to fine, constant ratio).
 
     Certified when the last three levels converge monotonically with an observed order p that is consistent:
@@ -109,6 +109,11 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     the last two changes are both below it (relative), they agree to the precision the solvers and estimators
     resolve, where no order can be observed; the quantity is then certified as converged, ``value`` = finest
     level, ``error_estimate`` = 3 x the largest of the two changes (Roache's factor without a verified order).
+    ``sigma``: the standard error of each level's value when it is estimated from scattered samples (a fit
+    over FE nodal reactions, :mod:`femcheck.qoi`). A change between two levels is then *observed* only when it
+    exceeds two standard errors of the difference, 2 sqrt(s_i^2 + s_j^2); if either of the last two is not, no
+    order can be observed and the quantity is not certified (unless it is converged below ``floor`` with its
+    scatter too), and every error estimate is at least 2 s of the finest level.
     """
     h = [float(x) for x in h]
     q = [float(x) for x in q]
@@ -132,12 +137,29 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     p = orders[-1]
     last_change = abs(q[-1] - q[-2]) / scale
     bound = SAFETY_UNCERTIFIED * max(last_change, abs(q[-2] - q[-3]) / scale)
+    scatter = 0.0
+    resolved = True
+    if sigma is not None:
+        sg = [float(x) if x is not None and np.isfinite(x) else 0.0 for x in sigma]
+        scatter = 2.0 * sg[-1] / scale
+        pair = [2.0 * np.hypot(sg[i], sg[i + 1]) for i in (-3, -2)]
+        diffs = [abs(q[-2] - q[-3]), abs(q[-1] - q[-2])]
+        resolved = all(d > s_ for d, s_ in zip(diffs, pair))
+        bound = max(bound, scatter)
     if q[-1] == q[-2] == q[-3]:
         return Certificate(finest, finest, None, 0.0, False,
                            "the last three levels are equal: the quantity does not see the mesh (a mesh node?)")
-    converged = bound / SAFETY_UNCERTIFIED < floor
-    why_floor = (f"converged: the last three levels agree within {bound / SAFETY_UNCERTIFIED:.1e} "
+    spread = max(last_change, abs(q[-2] - q[-3]) / scale)
+    converged = spread < floor and scatter < floor
+    why_floor = (f"converged: the last three levels agree within {spread:.1e} "
                  f"(< {floor:g}, below the solvers' and estimators' resolution)")
+    if not resolved:
+        if converged:
+            return Certificate(finest, finest, p, bound, True, why_floor)
+        return Certificate(finest, finest, p, bound, False,
+                           f"the changes between the last levels ({diffs[0] / scale:.1e}, {diffs[1] / scale:.1e}) are "
+                           f"within the scatter of the estimates (2 sigma: {pair[0] / scale:.1e}, "
+                           f"{pair[1] / scale:.1e}): no order can be observed")
     if p is None:
         if converged:
             return Certificate(finest, finest, None, bound, True, why_floor)
@@ -159,7 +181,7 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
             return Certificate(finest, finest, p, bound, True, why_floor)
         return Certificate(finest, finest, p, bound, False, why + ": not in the asymptotic range")
     value = finest + (finest - q[-2]) / (r**p - 1.0)
-    err = SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0)
+    err = max(SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0), scatter)
     return Certificate(float(value), finest, p, float(err), True, why)
 
 
@@ -167,10 +189,17 @@ def certify_levels(levels: list[dict], names: tuple[str, ...] | list[str], h_key
                    singular: tuple[str, ...] = (), expected_order: dict[str, float] | None = None
                    ) -> dict[str, Certificate]:
     """:func:`certify` for each quantity ``names`` over level dicts (coarse to fine) holding ``h_key`` and the
-    quantities; ``singular`` names the quantities that grow with refinement by nature (peaks at sharp edges)."""
+    quantities (with ``<name>_std``, their standard errors, when the levels carry them); ``singular`` names the
+    quantities that grow with refinement by nature (peaks at sharp edges)."""
     h = [lv[h_key] for lv in levels]
     exp = expected_order or {}
-    return {n: certify(h, [lv[n] for lv in levels], exp.get(n), singular=n in singular) for n in names}
+
+    def sigma(n):
+        s = [lv.get(f"{n}_std") for lv in levels]
+        return s if all(x is not None for x in s) else None
+
+    return {n: certify(h, [lv[n] for lv in levels], exp.get(n), singular=n in singular, sigma=sigma(n))
+            for n in names}
 
 
 def certificate_stats(certs: dict[str, Certificate]) -> dict[str, dict]:
