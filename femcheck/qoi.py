@@ -335,11 +335,13 @@ def peak(x: np.ndarray, p: np.ndarray, window: float = 0.5, centre: float | None
         raise ValueError("no loaded sample: the peak is undefined")
     i = int(loaded[np.argmax(p[loaded])])
     lo, hi = loaded.min(), loaded.max()
-    for end, inner in ((hi, hi - 1), (lo, lo + 1)):
+    half_model = centre is not None and x[lo] >= centre       # the profile starts on the symmetry line
+    ends = ((hi, hi - 1),) if half_model else ((hi, hi - 1), (lo, lo + 1))
+    for end, inner in ends:
         if i == end and 0 <= inner < x.size and 0 < p[inner] < p[i]:
             return Peak(float(p[i]), float(x[i]), True, 1)
-    if centre is not None and x[lo] >= centre:
-        half = x[hi] - centre                   # a half model: the profile starts at the centre
+    if half_model:
+        half = x[hi] - centre
     else:
         half = 0.5 * (x[hi] - x[lo])
     w = window * half

@@ -58,6 +58,13 @@ def test_peak_off_the_centre_and_singular_peaks():
     assert abs(pk.position) == pytest.approx(np.sqrt(1 / 3), abs=5e-3)
     punch = qoi.peak(x, _field(x, 1.001, -0.5), centre=0.0)
     assert punch.singular and punch.points == 1
+    # a symmetric half model (x >= 0) peaks on its symmetry line: a smooth maximum, not an edge
+    half = x[x >= 0]
+    for pk in (qoi.peak(half, _field(half, 0.8, 0.5), centre=0.0), qoi.peak(half, (1 - half**2) * (1 + 3 * half**2),
+                                                                             centre=0.0)):
+        assert not pk.singular and pk.points > 5
+    assert qoi.peak(half, _field(half, 0.8, 0.5), centre=0.0).value == pytest.approx(1.0, abs=1e-4)
+    assert qoi.peak(half, _field(half, 0.8, -0.5), centre=0.0).singular
 
 
 def test_elliptic_fields_in_2d_full_and_quarter():
