@@ -52,3 +52,34 @@ def test_inconsistent_orders_over_four_levels_are_not_certified():
 def test_singular_quantity_is_flagged():
     c = certify([1, 0.5, 0.25], [9.1e9, 9.4e9, 9.7e9], singular=True)
     assert not c.certified and "mesh-dependent" in c.note and c.value == 9.7e9
+
+
+def test_levels_that_agree_below_the_floor_are_converged_whatever_the_sign():
+    # layer-line's p_max on four levels (2D P2): 8.894851, 8.894771, 8.894815 (x 1e8 Pa): changes of 1e-5 carry no
+    # order, the quantity no longer sees the mesh
+    c = certify([0.05, 0.025, 0.0125], [8.894851e8, 8.894771e8, 8.894815e8])
+    assert c.certified and c.value == 8.894815e8 and "converged" in c.note
+    assert c.error_estimate == pytest.approx(3 * 8.0e3 / 8.894815e8, rel=1e-6)
+    # the same pattern 50 times larger is an oscillation, not convergence
+    assert not certify([0.05, 0.025, 0.0125], [1.0, 1.0 - 4.5e-4, 1.0 - 2e-4]).certified
+
+
+def test_a_monotone_sequence_below_the_floor_is_still_extrapolated():
+    h, q = _levels(1.0, 1e-3, 2.0)          # changes of 7.5e-6 and 1.9e-6: below the floor, but asymptotic
+    c = certify(h, q)
+    assert c.certified and c.value == pytest.approx(1.0, rel=1e-12) and "observed order" in c.note
+
+
+def test_changes_within_the_scatter_of_the_estimates_certify_nothing():
+    # hertz-point's FE semi-axis along x on three levels looked second-order (order 3.3, GCI 0.04 %) while the
+    # y semi-axis of the same axisymmetric contact differed from it by 0.5 %: the last change (7e-4) was within
+    # the scatter of the edge fits over P1 nodal reactions
+    h = [0.0625, 0.0625 / 2**0.5, 0.03125]
+    q = [3.990091e-4, 3.999419e-4, 4.002399e-4]
+    assert certify(h, q).certified
+    noisy = certify(h, q, sigma=[1.0e-6, 0.8e-6, 0.6e-6])
+    assert not noisy.certified and "scatter" in noisy.note
+    assert noisy.error_estimate >= 2 * 0.6e-6 / 4.002399e-4
+    # the same levels with a scatter ten times smaller than the changes are certified, the error at least 2 sigma
+    sharp = certify(h, q, sigma=[1e-8, 1e-8, 1e-8])
+    assert sharp.certified and sharp.error_estimate >= 2e-8 / 4.0e-4

@@ -80,21 +80,6 @@ def test_constrained_compression_of_a_coated_block(nu_layer):
     np.testing.assert_allclose(uy_top, expected, rtol=1e-9)
 
 
-# ---------------------------------------------------------------- contact edge estimator
-
-
-@pytest.mark.parametrize("alpha", [0.5, 1.0, 2.0])
-@pytest.mark.parametrize("a", [1.0, 0.9951, 0.9937])
-def test_power_edge_fit_is_exact_on_closed_form_edges(alpha, a):
-    # Hertz (alpha = 1/2), Winkler thin layer (1) and squeeze film (2): p = (1 - x^2/a^2)^alpha, sampled on
-    # nodes that do not fall on the edge; the fit must find a to round-off (1e-9 relative).
-    x = np.linspace(0.0, 1.3, 105)
-    p = np.clip(1.0 - (x / a) ** 2, 0.0, None) ** alpha
-    e = L.contact_edge_power(x, p)
-    assert e.edge == pytest.approx(a, rel=1e-9)
-    assert e.alpha == pytest.approx(alpha)
-
-
 # ---------------------------------------------------------------- 2D contact against closed forms
 
 

@@ -17,7 +17,8 @@ lam_i / w_i with w_i = int phi_i ds the node's tributary length.
 
 Mesh family: lengths in units of a reference half-width a_ref found by pilot solves on coarse meshes (a layered
 contact's width lies anywhere between the layer's and the substrate's Hertz width, or far below both on a rigid
-base); level k halves every length (nested in the layer), Richardson extrapolation over the last three levels
+base) and aligned so that a vertex lies on the contact edge measured on level 1 (:func:`reference_width`); level k
+halves every length (nested in the layer); per quantity a convergence certificate over the levels
 (:mod:`femcheck.solvers.convergence`). SI units throughout.
 """
 from __future__ import annotations
@@ -37,7 +38,8 @@ from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
 from ..solvers import frictionless
-from ..solvers.convergence import Extrapolation, richardson
+from ..qoi import edge, peak
+from ..solvers.convergence import certificate_stats, certify_levels
 from ..solvers.elasticity2d import MIXED_ABOVE_NU, Body, CondensedBody, _deviatoric_part, _divergence, _mass
 from ..meshes.coated import LAYER, SUBSTRATE, LayeredTriMesh, LayerSizing, coated_block_half
 
@@ -82,60 +84,10 @@ class LayeredLineLevel:
     time_s: float
     formulations: dict[str, str] = field(default_factory=dict)
     mesh: LayeredTriMesh | None = None
-    edge_resolution: float = 0.0      # node interval (m) when the edge is pinned to a node, else 0
-
-
-@dataclass(frozen=True)
-class ContactEdge:
-    """Contact edge ``edge`` (m), fitted edge exponent ``alpha`` (p ~ (a - x)^alpha near the edge) and the rms
-    misfit of the fit relative to the fitted range (``misfit``)."""
-
-    edge: float
-    alpha: float
-    misfit: float
-    clipped: bool = False      # the fit's root fell outside the node intervals: the edge is pinned to a node
-    spacing: float = 0.0       # node interval at the edge (m): the resolution of a pinned edge
-
-
-EDGE_EXPONENTS = np.linspace(0.5, 2.0, 61)
-
-
-def contact_edge_power(x: np.ndarray, p: np.ndarray, band: float = 0.15, min_points: int = 4) -> ContactEdge:
-    """Edge of a symmetric 1D pressure profile on x >= 0 (m), to sub-node accuracy, whatever its edge shape.
-
-    A layered contact's edge changes character with t/a: Hertzian p ~ (a^2 - x^2)^(1/2) on a thick layer,
-    Winkler p ~ (a^2 - x^2) on a thin compressible layer on a rigid base (Johnson 1985 §5.9), squeeze-film
-    p ~ (a^2 - x^2)^2 on a thin incompressible one. All three are p^(1/alpha) = c (a^2 - x^2); so for each
-    alpha in [1/2, 2] p^(1/alpha) is fitted by least squares as a linear function of x^2 over the loaded nodes
-    within ``band`` of the loaded extent from the last loaded node (at least ``min_points``), the alpha with the
-    smallest relative misfit is kept, and its root x^2 = a^2 gives the edge, clipped to the two node intervals
-    around the last loaded node (``clipped`` then says the edge is only known to the node spacing: a steep
-    edge, e.g. a stiff thin layer on a soft substrate, falls within one element). Exact on the three closed forms; the quadratic-in-p^2 fit of
-    :func:`femcheck.qoi.contact_edge` (Hertz only) was 1.4 % short on a thin layer (t/a = 0.02) here.
-    """
-    x = np.asarray(x, dtype=float)
-    p = np.asarray(p, dtype=float)
-    loaded = np.flatnonzero(p > 0)
-    if loaded.size == 0:
-        raise ValueError("no loaded node: the contact edge is undefined")
-    k = loaded[-1]
-    lo, hi = x[max(k - 1, 0)], x[min(k + 1, x.size - 1)]
-    sel = loaded[x[loaded] >= x[k] - band * (x[k] - x[loaded[0]])]
-    if sel.size < min_points:
-        sel = loaded[-min_points:]
-    if sel.size < 2:
-        return ContactEdge(float(0.5 * (lo + hi)), float("nan"), float("nan"))
-    q = p[sel] / p[sel].max()
-    Y = q[None, :] ** (1.0 / EDGE_EXPONENTS[:, None])                 # (n_alpha, n_points)
-    A = np.stack([np.ones(sel.size), x[sel] ** 2 - x[k] ** 2], axis=1)
-    coef, *_ = np.linalg.lstsq(A, Y.T, rcond=None)
-    misfit = np.sqrt(((Y - (A @ coef).T) ** 2).mean(axis=1)) / np.maximum(np.ptp(Y, axis=1), 1e-300)
-    j = int(np.argmin(misfit))
-    c0, c1 = coef[:, j]
-    edge = np.sqrt(max(x[k] ** 2 - c0 / c1, 0.0)) if c1 < 0 else 0.5 * (lo + hi)
-    clipped = bool(edge <= lo or edge >= hi)
-    return ContactEdge(float(np.clip(edge, lo, hi)), float(EDGE_EXPONENTS[j]), float(misfit[j]), clipped,
-                       float(hi - x[k]))
+    edge_exponent: float = 0.5        # fitted p ~ (a^2 - x^2)^alpha near the edge
+    edge_misfit: float = 0.0
+    p_max_std: float = float("nan")   # standard errors of the fitted quantities (femcheck.qoi)
+    half_width_std: float = float("nan")
 
 
 def inverse_lame_lambda(m: Elastic) -> float:
@@ -245,27 +197,12 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
         raise ConvergenceError("FEM layered line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
     h = s.h_contact * a_ref / 2**level
-    edge = contact_edge_power(x, p)
-    return LayeredLineLevel(h, x, p, float(p.max()), edge.edge, 2.0 * float(sol.lam.sum()), sol.delta,
+    # shape-agnostic estimators (femcheck.qoi): the edge is a power law with its exponent fitted (1/2 on a thick
+    # layer, 1 on a thin compressible one, 2 on a thin incompressible one), the peak a local quartic
+    e, pk = edge(x, p), peak(x, p, centre=0.0)
+    return LayeredLineLevel(h, x, p, pk.value, e.position, 2.0 * float(sol.lam.sum()), sol.delta,
                             body.n_dofs, int(mesh.t.shape[1]), lm.layer_rows, sol.iterations, sol.residual,
-                            time.perf_counter() - t0, forms, lm, edge.spacing if edge.clipped else 0.0)
-
-
-def extrapolate(levels: list, quantity: str, resolution: str | None = None) -> Extrapolation:
-    """Richardson over the levels (:func:`femcheck.solvers.convergence.richardson`). For an edge quantity,
-    ``resolution`` names the levels' attribute holding the node interval of a pinned edge: if any of the last
-    three levels is pinned, the sequence is a staircase, not a converging series, so no order is claimed, the
-    value is the finest level's and the error estimate is at least the finest edge interval (never the
-    spurious 0 of three equal pinned values)."""
-    ext = richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])
-    if resolution is None:
-        return ext
-    res = [getattr(lv, resolution) for lv in levels[-3:]]
-    if max(res) > 0:
-        fine = getattr(levels[-1], quantity)
-        step = abs(fine - getattr(levels[-2], quantity))
-        return Extrapolation(fine, None, float(max(step, res[-1], ext.error_estimate)), fine)
-    return ext
+                            time.perf_counter() - t0, forms, lm, e.exponent, e.misfit, pk.std, e.std)
 
 
 def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float) -> float:
@@ -283,10 +220,23 @@ def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     return max(a_layer, a_sub)
 
 
+# The family is aligned on level 1's edge whatever the number of levels (so level 0 is the same mesh and solution
+# when a reference's coarsest level is re-solved alone).
+ALIGN_LEVEL = 1
+
+
 def reference_width(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float,
-                    s: FEMLayeredLineSettings, max_pilots: int = 5) -> tuple[float, list[float]]:
-    """Reference half-width a_ref (m) that scales the mesh family: pilot solves on the coarsest mesh with a
-    candidate zone of 2 a_guess, repeated with a_guess <- measured width until two agree within 10 %."""
+                    s: FEMLayeredLineSettings, max_pilots: int = 5, align_tol: float = 1e-3,
+                    max_align: int = 3) -> tuple[float, list[float]]:
+    """Reference half-width a_ref (m) that scales the mesh family, which then has a vertex at a_ref on every level
+    (the contact zone is meshed uniformly from x = 0 in steps of h_contact a_ref / 2^k).
+
+    First pilot solves on the coarsest mesh with a candidate zone of 2 a_guess, repeated with a_guess <- measured
+    width until two agree within 10 %; then the family is *aligned*: level 1 is solved on a_ref and a_ref is set
+    to its measured edge (:func:`femcheck.qoi.edge`) until it moves by less than ``align_tol``. An edge-aligned
+    family keeps the contact edge at the same place relative to the nodes on every level, which the discrete
+    contact's edge is sensitive to (measured on layer-line: edges over four unaligned levels scattered by 1 %,
+    aligned by 0.04 %); the edge itself is still the estimator's value on each level, never the node."""
     a = width_guess(radius, layer, substrate, thickness, load)
     history = [a]
     for _ in range(max_pilots):
@@ -298,10 +248,20 @@ def reference_width(radius: float, layer: Elastic, substrate: Elastic, thickness
             continue
         history.append(lv.half_width)
         if abs(lv.half_width / a - 1.0) < 0.1:
-            return lv.half_width, history
+            a = lv.half_width
+            break
         a = lv.half_width
-    raise ConvergenceError("FEM layered pilot (contact width)", max_pilots, abs(history[-1] / history[-2] - 1), 0.1,
-                           "the pilot widths did not settle")
+    else:
+        raise ConvergenceError("FEM layered pilot (contact width)", max_pilots, abs(history[-1] / history[-2] - 1),
+                               0.1, "the pilot widths did not settle")
+    for _ in range(max_align):
+        edge_ = solve_level(radius, layer, substrate, thickness, load, a, ALIGN_LEVEL, s).half_width
+        history.append(edge_)
+        moved = abs(edge_ / a - 1.0)
+        a = edge_
+        if moved < align_tol:
+            break
+    return a, history
 
 
 FEM_SCHEMA: dict[str, Key] = {
@@ -380,8 +340,9 @@ def materials_of(params: dict[str, Any]) -> tuple[Elastic, Elastic, float]:
 def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem`` model of the layered line scenes (rigid cylinder on a coated block) from flat parameters:
     ``layer.E|nu|thickness``, ``materials.substrate.E|nu|rigid``, ``geometry.radius``, ``load.per_length`` and
-    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa), half_width (m) Richardson-extrapolated
-    over >= 3 levels (finest values otherwise), total_force (N/m, finest level)."""
+    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa, :func:`femcheck.qoi.peak`), half_width (m,
+    :func:`femcheck.qoi.edge`): the certificate's value (Richardson-extrapolated when the levels are in the
+    asymptotic range, else the finest level), total_force (N/m, finest level)."""
     t_start = time.perf_counter()
     layer, sub, t = materials_of(params)
     R, load = float(params["geometry.radius"]), float(params["load.per_length"])
@@ -408,15 +369,14 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "block": {"width": s.block_width * a_ref, "depth": max(s.block_depth * a_ref, 2.0 * t)},
         "levels": [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_dofs": lv.n_dofs,
                     "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
-                    "edge_pinned_to_node": lv.edge_resolution > 0, "iterations": lv.iterations,
-                    "residual": lv.residual, "total_force": lv.total_force, "time_s": lv.time_s} for lv in levels],
+                    "edge_exponent": lv.edge_exponent, "edge_misfit": lv.edge_misfit, "approach": lv.approach,
+                    "p_max_std": lv.p_max_std, "half_width_std": lv.half_width_std,
+                    "iterations": lv.iterations, "residual": lv.residual, "total_force": lv.total_force,
+                    "time_s": lv.time_s} for lv in levels],
     }
-    q = dict(finest)
-    if s.levels >= 3:
-        rich = {"p_max": extrapolate(levels, "p_max"),
-                "half_width": extrapolate(levels, "half_width", "edge_resolution")}
-        stats["richardson"] = {k: v.as_dict() for k, v in rich.items()}
-        q = {k: v.value for k, v in rich.items()}
+    certs = certify_levels(stats["levels"], quantities)
+    stats.update(certificate_stats(certs))
+    q = {k: c.value for k, c in certs.items()}
     q["total_force"] = fine.total_force
     return ModelResult("fem", time_s=time.perf_counter() - t_start, quantities=q, stats=stats,
                        fields={"x": fine.x, "pressure": fine.p})

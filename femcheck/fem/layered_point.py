@@ -18,10 +18,10 @@ Limits (stated, not hidden): P1 tetrahedra only, so nu <= 0.45 in both materials
 substrate converges slower in P1 (shear locking of flat elements) — the levels' observed order and the
 Richardson error estimate in the stats say how far the reference can be trusted in a given case.
 
-Quantities: p_max from a least-squares fit p = c0 + c2 r^2 + c4 r^4 to the nodal pressures over r < a/2
-(P1 nodal reactions scatter node to node on an unstructured face; every closed-form profile here is smooth at
-the centre), semi-axes from :func:`femcheck.fem.layered_line.contact_edge_power` on the nodes of the symmetry
-lines (x axis: y = 0, y axis: x = 0). Levels and Richardson as in :mod:`femcheck.fem.point_contact`.
+Quantities (:func:`femcheck.qoi.symmetric_contact`, no shape assumed; P1 nodal reactions scatter node to node on
+an unstructured face, so each is a local fit over many nodes): p_max, the centre value of an even quartic over
+half the contact; semi-axes, power-law edges with the exponent fitted in strips along the symmetry lines. Per
+quantity a convergence certificate over the levels (stats["certificates"]), as in :mod:`femcheck.fem.point_contact`.
 SI units throughout.
 """
 from __future__ import annotations
@@ -39,10 +39,10 @@ from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
-from ..solvers.convergence import Extrapolation
+from ..qoi import symmetric_contact
+from ..solvers.convergence import certificate_stats, certify_levels
 from ..solvers.elasticity3d import Solid, elasticity_solver
-from .layered_line import contact_edge_power, materials_of
-from .layered_line import extrapolate as extrapolate_line
+from .layered_line import materials_of
 from ..meshes.coated import LAYER, SUBSTRATE, LayeredTetMesh, LayerSizing, coated_block_quarter
 from .quarter_block import tributary_areas
 from ..solvers.rigid_indenter import active_set
@@ -91,8 +91,8 @@ class LayeredPointLevel:
     times: dict[str, float] = field(default_factory=dict)
     x: np.ndarray | None = None        # x-axis contact nodes (m) and their pressures (Pa)
     p: np.ndarray | None = None
-    resolution_x: float = 0.0          # node interval (m) when an edge is pinned to a node, else 0
-    resolution_y: float = 0.0
+    edge_exponent: float = 0.5         # fitted p ~ (a^2 - r^2)^alpha near the edge
+    std: dict[str, float] = field(default_factory=dict)   # standard errors of the fitted quantities
 
 
 def assemble_layered_solid(lm: LayeredTetMesh, materials: dict[int, Elastic]) -> Solid:
@@ -108,18 +108,6 @@ def assemble_layered_solid(lm: LayeredTetMesh, materials: dict[int, Elastic]) ->
             Kr = asm(linear_elasticity(lam, mu), basis.with_elements(idx))
             K = Kr if K is None else K + Kr
     return Solid(basis, K.tocsr(), materials[LAYER])
-
-
-def centre_peak(x: np.ndarray, y: np.ndarray, p: np.ndarray, radius: float) -> float:
-    """Peak pressure (Pa): least-squares fit p = c0 + c2 r^2 + c4 r^4 over the nodes with r < ``radius``; c0.
-    Exact for Hertz to O((r/a)^6), for Johnson's thin layers exactly."""
-    r2 = x * x + y * y
-    sel = r2 < radius * radius
-    if sel.sum() < 6:
-        sel = np.argsort(r2)[:6]
-    A = np.stack([np.ones(np.size(r2[sel])), r2[sel], r2[sel] ** 2], axis=1)
-    c, *_ = np.linalg.lstsq(A, p[sel], rcond=None)
-    return float(c[0])
 
 
 def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float, a_ref: float,
@@ -165,30 +153,20 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
                                "contact reached the rim of the candidate zone; raise numerics.fem_contact_zone")
     p = sol.lam / w
     on_x = np.flatnonzero(np.abs(yc) < tiny)
-    on_y = np.flatnonzero(np.abs(xc) < tiny)
-    ox, oy = on_x[np.argsort(xc[on_x])], on_y[np.argsort(yc[on_y])]
-    loaded_r = np.sqrt(r2[p > 0].max())
-    ex, ey = contact_edge_power(xc[ox], p[ox]), contact_edge_power(yc[oy], p[oy])
+    ox = on_x[np.argsort(xc[on_x])]
+    fit = symmetric_contact(xc, yc, p)
     return LayeredPointLevel(
-        h=s.h_contact * a_ref / 2**level, p_max=centre_peak(xc, yc, p, 0.5 * loaded_r),
-        semi_axis_x=ex.edge, semi_axis_y=ey.edge,
-        p_max_nodal=float(p.max()), approach=sol.delta, total_force=4.0 * float(sol.lam.sum()),
-        n_nodes=mesh.n_nodes, n_dofs=int(free.size), n_elements=int(mesh.tets.shape[1]), layer_rows=lm.layer_rows,
-        active_nodes=int(sol.active.sum()), iterations=sol.iterations, cg_iterations=sol.cg_iterations,
-        residual=sol.residual, solver=type(lin).__name__, time_s=time.perf_counter() - t0, times=times,
-        x=xc[ox], p=p[ox], resolution_x=ex.spacing if ex.clipped else 0.0,
-        resolution_y=ey.spacing if ey.clipped else 0.0)
+        h=s.h_contact * a_ref / 2**level, p_max=fit["p_max"], semi_axis_x=fit["semi_axis_x"],
+        semi_axis_y=fit["semi_axis_y"], p_max_nodal=float(p.max()), approach=sol.delta,
+        total_force=4.0 * float(sol.lam.sum()), n_nodes=mesh.n_nodes, n_dofs=int(free.size),
+        n_elements=int(mesh.tets.shape[1]), layer_rows=lm.layer_rows, active_nodes=int(sol.active.sum()),
+        iterations=sol.iterations, cg_iterations=sol.cg_iterations, residual=sol.residual,
+        solver=type(lin).__name__, time_s=time.perf_counter() - t0, times=times, x=xc[ox], p=p[ox],
+        edge_exponent=0.5 * (fit["exponent_x"] + fit["exponent_y"]),
+        std={k: v for k, v in fit.items() if k.endswith("_std") and k != "contact_area_std"})
 
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y")
-
-
-RESOLUTION = {"p_max": None, "semi_axis_x": "resolution_x", "semi_axis_y": "resolution_y"}
-
-
-def extrapolate(levels: list[LayeredPointLevel], quantity: str) -> Extrapolation:
-    """:func:`femcheck.fem.layered_line.extrapolate` (pinned edges give no order and a node-interval error)."""
-    return extrapolate_line(levels, quantity, RESOLUTION[quantity])
 
 
 def radius_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float) -> float:
@@ -264,8 +242,9 @@ def settings(params: dict[str, Any]) -> FEMLayeredPointSettings:
 def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem`` model of the layered point scenes (rigid sphere on a coated block) from flat parameters:
     ``layer.E|nu|thickness``, ``materials.substrate.E|nu|rigid``, ``geometry.radius``, ``load.normal`` (N) and
-    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa), semi_axis_x, semi_axis_y (m)
-    Richardson-extrapolated over >= 3 levels (finest otherwise), total_force (N, finest level)."""
+    the ``numerics.fem_*`` keys of FEM_SCHEMA. Quantities p_max (Pa), semi_axis_x, semi_axis_y (m): the
+    certificate's value (Richardson-extrapolated when the levels are in the asymptotic range, else the finest
+    level), total_force (N, finest level)."""
     t_start = time.perf_counter()
     layer, sub, t = materials_of(params)
     for name, mat in (("layer.nu", layer), ("materials.substrate.nu", sub)):
@@ -297,16 +276,14 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "levels": [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_nodes": lv.n_nodes,
                     "n_dofs": lv.n_dofs, "n_elements": lv.n_elements,
                     **{q: getattr(lv, q) for q in QUANTITIES}, "p_max_nodal": lv.p_max_nodal,
-                    "approach": lv.approach, "edge_pinned_to_node": bool(lv.resolution_x or lv.resolution_y),
+                    "approach": lv.approach, "edge_exponent": lv.edge_exponent, **lv.std,
                     "active_nodes": lv.active_nodes, "iterations": lv.iterations,
                     "cg_iterations": lv.cg_iterations, "residual": lv.residual, "linear_solver": lv.solver,
                     "total_force": lv.total_force, "time_s": lv.time_s, **lv.times} for lv in levels],
     }
-    q = dict(finest)
-    if s.levels >= 3:
-        rich = {name: extrapolate(levels, name) for name in QUANTITIES}
-        stats["richardson"] = {k: v.as_dict() for k, v in rich.items()}
-        q = {k: v.value for k, v in rich.items()}
+    certs = certify_levels(stats["levels"], QUANTITIES)
+    stats.update(certificate_stats(certs))
+    q = {k: c.value for k, c in certs.items()}
     q["total_force"] = fine.total_force
     return ModelResult("fem", time_s=time.perf_counter() - t_start, quantities=q, stats=stats,
                        fields={"x": fine.x, "pressure": fine.p})

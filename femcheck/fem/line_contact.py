@@ -8,9 +8,8 @@ import numpy as np
 
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
-from ..qoi import contact_edge
+from ..qoi import edge, peak
 from ..solvers import frictionless
-from ..solvers.convergence import Extrapolation, richardson
 from ..solvers.elasticity2d import CondensedBody, boundary_dofs, make_body
 from ..meshes.plane import MeshSpec, TriMesh, block_half, cylinder_half
 
@@ -55,6 +54,7 @@ class FEMLevel:
     time_s: float
     meshes: dict[str, TriMesh] = field(default_factory=dict)
     formulations: dict[str, str] = field(default_factory=dict)
+    std: dict[str, float] = field(default_factory=dict)       # standard errors of the fitted quantities
 
 
 def _tributary_weights(body, dofs: np.ndarray, where) -> np.ndarray:
@@ -131,9 +131,8 @@ def solve_level(radius: float, cylinder: Elastic, block: Elastic, load_per_lengt
     if p[-1] > 0:
         raise ConvergenceError("FEM line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
-    return FEMLevel(h, x, p, float(p.max()), contact_edge(x, p), 2.0 * float(sol.lam.sum()), n_dofs, n_el,
-                    sol.iterations, sol.residual, sol.penetration, time.perf_counter() - t0, meshes, formulations)
-
-
-def extrapolate(levels: list[FEMLevel], quantity: str) -> Extrapolation:
-    return richardson([lv.h for lv in levels], [getattr(lv, quantity) for lv in levels])
+    # peak: local even quartic about the symmetry line; edge: power law with its exponent fitted (femcheck.qoi)
+    pk, e = peak(x, p, centre=0.0), edge(x, p)
+    return FEMLevel(h, x, p, pk.value, e.position, 2.0 * float(sol.lam.sum()), n_dofs, n_el, sol.iterations,
+                    sol.residual, sol.penetration, time.perf_counter() - t0, meshes, formulations,
+                    {"p_max_std": pk.std, "half_width_std": e.std})

@@ -16,11 +16,13 @@ roller, x rolling, y along the roller axis; builders in :mod:`femcheck.meshes.sr
 The plane x = 0 (containing both axes of revolution) is a symmetry plane; y = 0 is not one for the inner ring
 (torus about the inclined bearing axis), so both contacts are half models carrying N/2.
 
-Quantities per contact (suffix ``_inner`` / ``_outer``, as :mod:`femcheck.problems.srb_contact` names them):
-``p_max`` (Pa) and ``semi_axis_x``, ``semi_axis_y`` (m) from the least-squares fit of p^2 over the slave (roller)
-nodes mirrored about x = 0 (:func:`femcheck.qoi.ellipse_fit`; y is measured along the roller generatrix's
-chord), ``contact_area`` (m^2, pi a b) and ``total_force`` (N, platen force of the full contact).
-Richardson extrapolation over >= 3 levels (constant refinement ratio); finest level otherwise.
+Quantities per contact (suffix ``_inner`` / ``_outer``, as :mod:`femcheck.problems.srb_contact` names them), from
+the slave (roller) nodes with y measured along the roller generatrix's chord from the middle of the loaded extent
+(the inner contact is not symmetric in y): ``p_max`` (Pa, :func:`femcheck.qoi.centre_value_2d`: a local even
+quartic about the centre, no Hertzian shape assumed) and ``semi_axis_x``, ``semi_axis_y`` (m,
+:func:`femcheck.qoi.semi_axes`: power-law edges with the exponent fitted), ``contact_area`` (m^2, pi a b) and
+``total_force`` (N, platen force of the full contact). Per quantity a convergence certificate over the levels
+(stats["certificates"]; one level by default, which certifies nothing and says so).
 """
 from __future__ import annotations
 
@@ -33,10 +35,10 @@ from ..analytic import hertz
 from ..errors import InputError
 from ..geometry.srb import radii, rolling_radii
 from ..materials import Elastic, effective_modulus
-from ..qoi import ellipse_fit
+from ..qoi import symmetric_contact
 from ..result import ModelResult
 from ..scene import Key
-from ..solvers.convergence import richardson
+from ..solvers.convergence import certificate_stats, certify_levels
 from ..meshes.srb_segments import RingSegmentSpec, RollerSegmentSpec, ring_segment, roller_segment
 from ..solvers.two_body import ContactBody, solve_two_body
 
@@ -140,10 +142,15 @@ def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str,
                          rim=lambda x: (np.abs(x[0]) > 0.9 * zx) | (np.abs(x[1]) > 0.9 * zy),
                          solver=s["numerics.conformal_solver"])
     xs, ys = sol.x[0], sol.x[1]
-    fit = ellipse_fit(np.concatenate([xs, -xs]), np.concatenate([ys, ys]), np.tile(sol.pressure, 2))
-    return {"contact": contact, "level": level, "h": hc, "h_over_a": hc / a, "p_max": fit["peak"],
-            "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"], "centre_y": fit["centre_y"],
-            "fit_residual": fit["fit_residual"], "p_max_nodal": float(sol.pressure.max()),
+    loaded = ys[sol.pressure > 0]
+    centre_y = 0.5 * (loaded.min() + loaded.max())
+    fit = symmetric_contact(xs, ys - centre_y, sol.pressure)
+    return {"contact": contact, "level": level, "h": hc, "h_over_a": hc / a, "p_max": fit["p_max"],
+            "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"], "centre_y": centre_y,
+            "contact_area": float(np.pi * fit["semi_axis_x"] * fit["semi_axis_y"]),
+            "edge_exponent_x": fit["exponent_x"], "edge_exponent_y": fit["exponent_y"],
+            **{k: v for k, v in fit.items() if k.endswith("_std")},
+            "p_max_nodal": float(sol.pressure.max()),
             "total_force": 2.0 * sol.total_force, "approach": sol.approach,
             "n_nodes": int(rm.n_nodes + gm.n_nodes), "n_dofs": sol.n_dofs, "active_nodes": int(sol.active.sum()),
             "iterations": sol.iterations, "cg_iterations": sol.cg_iterations, "residual": sol.residual,
@@ -170,13 +177,10 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         stats["levels"] += levels
         fine = levels[-1]
         stats["finest"].update({f"{n}_{c}": fine[n] for n in QUANTITIES})
-        vals = {n: fine[n] for n in QUANTITIES}
-        if n_levels >= 3:
-            rich = {n: richardson([lv["h"] for lv in levels], [lv[n] for lv in levels]) for n in QUANTITIES}
-            stats.setdefault("richardson", {}).update({f"{n}_{c}": r.as_dict() for n, r in rich.items()})
-            vals = {n: r.value for n, r in rich.items()}
-        q.update({f"{n}_{c}": v for n, v in vals.items()})
-        q[f"contact_area_{c}"] = float(np.pi * vals["semi_axis_x"] * vals["semi_axis_y"])
+        certs = certify_levels(levels, QUANTITIES + ("contact_area",))
+        for key, part in certificate_stats(certs).items():
+            stats.setdefault(key, {}).update({f"{n}_{c}": v for n, v in part.items()})
+        q.update({f"{n}_{c}": cert.value for n, cert in certs.items()})
         q[f"total_force_{c}"] = fine["total_force"]
     q["total_force"] = q["total_force_inner"]
     stats["level_quantities"] = list(QUANTITIES)

@@ -38,7 +38,7 @@ from ..bem import layered
 from ..bem.halfspace import grid as bem_grid
 from ..fem import layered_line, layered_point
 from ..errors import ConvergenceError, InputError
-from ..qoi import contact_edge
+from ..qoi import half_width, semi_axes
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 
@@ -99,7 +99,7 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
-            "reference": True},
+            "reference": True, "coarse": {"numerics.fem_levels": 1}},
 }
 
 LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
@@ -251,30 +251,11 @@ def _size_bound(lp: dict[str, Any]) -> float:
 # Contact edges
 # ---------------------------------------------------------------------------------------------------------------
 
-def layered_edge(x: np.ndarray, p: np.ndarray, points: int = 5) -> float:
-    """Contact edge (m) on the side of increasing x, for profiles whose edge is either square-root like (an
-    elastic half-space, thick layers: p^2 linear in the distance to the edge) or linear (a layer much thinner
-    than a cell on a stiff base: Johnson's Winkler layer, p linear). Both are fitted by a straight line over the
-    last ``points`` loaded points and the better fit (smaller relative misfit) gives the edge; the square-root
-    case is then refined by :func:`femcheck.qoi.contact_edge` (the shared estimator of every other model)."""
-    x, p = np.asarray(x, dtype=float), np.asarray(p, dtype=float)
-    loaded = np.flatnonzero(p > 0)
-    if loaded.size < points + 1:
-        return contact_edge(x, p)
-    sel = loaded[-points:]
-    misfit, roots = [], []
-    for q in (p[sel] ** 2, p[sel]):
-        c, res, *_ = np.polyfit(x[sel], q / q.max(), 1, full=True)
-        misfit.append(float(res[0]) if res.size else 0.0)
-        roots.append(-c[1] / c[0] if c[0] < 0 else np.nan)
-    if misfit[1] < misfit[0] and np.isfinite(roots[1]):
-        k = sel[-1]
-        return float(np.clip(roots[1], x[k - 1], x[min(k + 1, x.size - 1)]))
-    return contact_edge(x, p)
-
-
 def _half_width(x: np.ndarray, p: np.ndarray) -> float:
-    return 0.5 * (layered_edge(x, p) + layered_edge(-x[::-1], p[::-1]))
+    """Half-width (m) of a profile centred on x = 0: :func:`femcheck.qoi.half_width`, a power-law edge with its
+    exponent fitted (square-root on a half-space or a thick layer, linear on Johnson's thin compressible layer,
+    quadratic on an incompressible one: no shape is assumed)."""
+    return half_width(x, p, centre=0.0)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -324,8 +305,10 @@ def _bem_one(lp: dict[str, Any], progress=None) -> ModelResult:
         fields = {"x": x, "pressure": r.pressure}
     else:
         y = sol.y
-        q = {"p_max": float(r.pressure.max()), "semi_axis_x": _half_width(x, pline),
-             "semi_axis_y": _half_width(y, r.pressure[x.size // 2, :]), "total_force": r.load}
+        # the estimator of the 3D FE reference (strips along both axes, femcheck.qoi.semi_axes): one definition
+        # of the edge for every model of the scene
+        ax, ay, _ = semi_axes(*np.meshgrid(x, y, indexing="ij"), r.pressure)
+        q = {"p_max": float(r.pressure.max()), "semi_axis_x": ax, "semi_axis_y": ay, "total_force": r.load}
         fields = {"x": x, "pressure": pline, "pressure_map": r.pressure, "map_x": x, "map_y": y}
     if lp.get("outputs.subsurface_stress", False):
         _bem_stress(solid, sol, max(v for k, v in q.items() if k in ("half_width", "semi_axis_x", "semi_axis_y")),

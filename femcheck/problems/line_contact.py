@@ -13,7 +13,8 @@ from ..analytic import hertz
 from ..analytic.stress import line_contact_field
 from ..bem.line import solve_line_contact
 from ..errors import ConvergenceError, InputError
-from ..fem.line_contact import FEMLineSettings, extrapolate, solve_level
+from ..fem.line_contact import FEMLineSettings, solve_level
+from ..solvers.convergence import certificate_stats, certify_levels
 from ..materials import effective_modulus
 from ..qoi import half_width
 from ..result import ModelResult
@@ -142,8 +143,9 @@ def _crop(mesh, a: float, extent: float = 3.0) -> dict[str, np.ndarray]:
 
 
 def fem(scene: Scene, progress=None) -> ModelResult:
-    """2D plane-strain FEM on ``numerics.fem_levels`` meshes; quantities are Richardson-extrapolated when there
-    are >= 3 levels (stats carry every level, the finest values and the error estimates)."""
+    """2D plane-strain FEM on ``numerics.fem_levels`` meshes; per quantity a convergence certificate
+    (stats["certificates"]: Richardson-extrapolated when the levels are in the asymptotic range, else the finest
+    level with a two-level bound); stats carry every level and the finest values."""
     h = _hertz(scene.params)
     s = fem_settings(scene)
     levels = []
@@ -157,16 +159,14 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     stats: dict[str, Any] = {
         "method": s.method, "element_order": s.order, "formulation": fine.formulations, "finest": finest,
         "levels": [{"h": lv.h, "h_over_a": lv.h / h.half_width, "n_dofs": lv.n_dofs,
-                    "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width,
+                    "n_elements": lv.n_elements, "p_max": lv.p_max, "half_width": lv.half_width, **lv.std,
                     "iterations": lv.iterations, "residual": lv.residual, "penetration": lv.penetration,
                     "total_force": lv.total_force, "time_s": lv.time_s} for lv in levels],
         "block": {"width": s.block_width * h.half_width, "depth": s.block_depth * h.half_width},
     }
-    q = dict(finest)
-    if s.levels >= 3:
-        rich = {name: extrapolate(levels, name) for name in ("p_max", "half_width")}
-        stats["richardson"] = {k: v.as_dict() for k, v in rich.items()}
-        q = {k: v.value for k, v in rich.items()}
+    certs = certify_levels(stats["levels"], ("p_max", "half_width"))
+    stats.update(certificate_stats(certs))
+    q = {k: c.value for k, c in certs.items()}
     q["total_force"] = fine.total_force
     fields = {"x": fine.x, "pressure": fine.p}
     for body, mesh in fine.meshes.items():

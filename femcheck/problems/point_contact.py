@@ -18,7 +18,7 @@ from ..bem import stress as bem_stress
 from ..errors import ConvergenceError, InputError
 from ..fem import point_contact as fem_point
 from ..materials import effective_modulus
-from ..qoi import ellipse_fit
+from ..qoi import semi_axes
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, model_keys, tolerance_key
 
@@ -91,7 +91,9 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("load.normal",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-            "reference": True},
+            "reference": True,
+            # the coarsest level alone (femcheck.reference_check re-solves it against the stored reference)
+            "coarse": {"numerics.fem_levels": 1, "numerics.fem_finite_size_check": False}},
 }
 
 
@@ -154,6 +156,15 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("analytic", quantities=q, stats=stats, fields={"x": x, "pressure": h.pressure(x, 0 * x)})
 
 
+def grid_semi_axes(g: halfspace.Grid, pressure: np.ndarray) -> tuple[dict[str, float], dict[str, dict]]:
+    """Semi-axes (m) of a contact centred on the grid: :func:`femcheck.qoi.semi_axes` (power-law edges with the
+    exponent fitted, in strips along both axes: no Hertzian shape assumed); also each edge's exponent and misfit."""
+    X, Y = g.mesh()
+    ax, ay, fits = semi_axes(X, Y, pressure)
+    return ({"semi_axis_x": ax, "semi_axis_y": ay},
+            {k: {"exponent": e.exponent, "misfit": e.misfit} for k, e in fits.items()})
+
+
 def bem(scene: Scene, progress=None) -> ModelResult:
     """Half-space BEM on an n x n grid over +/- bem_domain Hertz semi-axes (dy/dx follows the ellipse)."""
     h = _hertz(scene.params)
@@ -167,14 +178,13 @@ def bem(scene: Scene, progress=None) -> ModelResult:
     if c[0, :].any() or c[-1, :].any() or c[:, 0].any() or c[:, -1].any():
         raise ConvergenceError("BEM half-space contact", r.iterations, r.residual, scene["numerics.bem_tol"],
                                "contact reaches the edge of the BEM domain; raise numerics.bem_domain")
-    X, Y = g.mesh()
-    fit = ellipse_fit(X, Y, r.pressure)
-    q = {"p_max": float(r.pressure.max()), "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"],
-         "contact_area": float(np.pi * fit["semi_axis_x"] * fit["semi_axis_y"]), "approach": r.approach,
+    semi, fits = grid_semi_axes(g, r.pressure)
+    q = {"p_max": float(r.pressure.max()), **semi,
+         "contact_area": float(np.pi * semi["semi_axis_x"] * semi["semi_axis_y"]), "approach": r.approach,
          "total_force": r.load}
     stats = {**sol.stats, "residual": r.residual, "nx": g.nx, "ny": g.ny, "dx": g.dx, "dy": g.dy,
-             "a_over_dx": h.semi_axis_x / g.dx, "contact_cells": int(c.sum()),
-             "ellipse_fit_residual": fit["fit_residual"], "solver": "polonsky_keer",
+             "a_over_dx": h.semi_axis_x / g.dx, "contact_cells": int(c.sum()), "edges": fits,
+             "solver": "polonsky_keer",
              "convolution": scene["numerics.bem_convolution"], "preconditioner": "circulant"}
     j = g.ny // 2
     fields = {"x": g.x, "pressure": r.pressure[:, j], "pressure_map": r.pressure, "map_x": g.x, "map_y": g.y}

@@ -51,9 +51,9 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal")
 DEPENDS = {"fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
-                   "reference": True},
+                   "reference": True, "coarse": {"numerics.fem_levels": 1, "numerics.fem_finite_size_check": False}},
            "fem_conformal": {"params": ("geometry.", "load.", "materials.", "numerics.conformal_"),
-                             "reference": True}}
+                             "reference": True, "coarse": {"numerics.conformal_levels": 1}}}
 
 
 def validate(params: dict[str, Any]) -> None:
@@ -108,6 +108,9 @@ def _both(name: str) -> Callable[..., ModelResult]:
                 fields.update({k: v for k, v in res.fields.items() if k.startswith("view_")})
             if "richardson" in res.stats or "finest" in res.stats:
                 stats.setdefault("finest", {}).update({f"{k}_{c}": v for k, v in res.stats.get("finest", {}).items()})
+            if "certificates" in res.stats:
+                stats.setdefault("certificates", {}).update(
+                    {f"{k}_{c}": v for k, v in res.stats["certificates"].items()})
         if any("levels" in stats[c] for c in CONTACTS):
             stats["levels"] = [{**lv, "contact": c, "level": k} for c in CONTACTS
                                for k, lv in enumerate(stats[c].get("levels", []))]

@@ -90,8 +90,13 @@ def _orders(h: list[float], q: list[float]) -> list[float | None]:
     return out
 
 
+# Below this relative change between levels a quantity no longer sees the mesh at the precision of the solvers
+# and estimators (contact tolerance 1e-8 to 1e-10, estimator scatter ~1e-5): differences this small carry no order.
+CONVERGED_FLOOR = 1e-4
+
+
 def certify(h: list[float], q: list[float], expected_order: float | None = None, order_band: float = 2.0,
-            singular: bool = False) -> Certificate:
+            singular: bool = False, floor: float = CONVERGED_FLOOR, sigma: list[float] | None = None) -> Certificate:
     """Certificate of a quantity computed on levels of mesh size ``h`` (coarse to fine, constant ratio).
 
     Certified when the last three levels converge monotonically with an observed order p that is consistent:
@@ -100,7 +105,15 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     Then ``value`` = Richardson's extrapolation and ``error_estimate`` = 1.25 |value - finest| / |value|.
     Otherwise ``value`` = finest level and ``error_estimate`` = 3 max(last change) / |finest| (a two-level bound,
     not an extrapolation), and the note says why. ``singular``: the quantity grows with refinement by nature (a
-    peak at a sharp edge); it is never certified.
+    peak at a sharp edge); it is never certified. ``floor``: when the levels are not in the asymptotic range but
+    the last two changes are both below it (relative), they agree to the precision the solvers and estimators
+    resolve, where no order can be observed; the quantity is then certified as converged, ``value`` = finest
+    level, ``error_estimate`` = 3 x the largest of the two changes (Roache's factor without a verified order).
+    ``sigma``: the standard error of each level's value when it is estimated from scattered samples (a fit
+    over FE nodal reactions, :mod:`femcheck.qoi`). A change between two levels is then *observed* only when it
+    exceeds two standard errors of the difference, 2 sqrt(s_i^2 + s_j^2); if either of the last two is not, no
+    order can be observed and the quantity is not certified (unless it is converged below ``floor`` with its
+    scatter too), and every error estimate is at least 2 s of the finest level.
     """
     h = [float(x) for x in h]
     q = [float(x) for x in q]
@@ -124,10 +137,32 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
     p = orders[-1]
     last_change = abs(q[-1] - q[-2]) / scale
     bound = SAFETY_UNCERTIFIED * max(last_change, abs(q[-2] - q[-3]) / scale)
+    scatter = 0.0
+    resolved = True
+    if sigma is not None:
+        sg = [float(x) if x is not None and np.isfinite(x) else 0.0 for x in sigma]
+        scatter = 2.0 * sg[-1] / scale
+        pair = [2.0 * np.hypot(sg[i], sg[i + 1]) for i in (-3, -2)]
+        diffs = [abs(q[-2] - q[-3]), abs(q[-1] - q[-2])]
+        resolved = all(d > s_ for d, s_ in zip(diffs, pair))
+        bound = max(bound, scatter)
     if q[-1] == q[-2] == q[-3]:
         return Certificate(finest, finest, None, 0.0, False,
                            "the last three levels are equal: the quantity does not see the mesh (a mesh node?)")
+    spread = max(last_change, abs(q[-2] - q[-3]) / scale)
+    converged = spread < floor and scatter < floor
+    why_floor = (f"converged: the last three levels agree within {spread:.1e} "
+                 f"(< {floor:g}, below the solvers' and estimators' resolution)")
+    if not resolved:
+        if converged:
+            return Certificate(finest, finest, p, bound, True, why_floor)
+        return Certificate(finest, finest, p, bound, False,
+                           f"the changes between the last levels ({diffs[0] / scale:.1e}, {diffs[1] / scale:.1e}) are "
+                           f"within the scatter of the estimates (2 sigma: {pair[0] / scale:.1e}, "
+                           f"{pair[1] / scale:.1e}): no order can be observed")
     if p is None:
+        if converged:
+            return Certificate(finest, finest, None, bound, True, why_floor)
         return Certificate(finest, finest, None, bound, False,
                            "the last three levels oscillate: not in the asymptotic range")
     if expected_order is not None:
@@ -142,7 +177,34 @@ def certify(h: list[float], q: list[float], expected_order: float | None = None,
             ok = consistent
             why += f", previous triple {orders[-2]:.2f} ({'consistent' if consistent else 'inconsistent'})"
     if not ok:
+        if converged:
+            return Certificate(finest, finest, p, bound, True, why_floor)
         return Certificate(finest, finest, p, bound, False, why + ": not in the asymptotic range")
     value = finest + (finest - q[-2]) / (r**p - 1.0)
-    err = SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0)
+    err = max(SAFETY_CERTIFIED * abs(value - finest) / (abs(value) if value != 0 else 1.0), scatter)
     return Certificate(float(value), finest, p, float(err), True, why)
+
+
+def certify_levels(levels: list[dict], names: tuple[str, ...] | list[str], h_key: str = "h",
+                   singular: tuple[str, ...] = (), expected_order: dict[str, float] | None = None
+                   ) -> dict[str, Certificate]:
+    """:func:`certify` for each quantity ``names`` over level dicts (coarse to fine) holding ``h_key`` and the
+    quantities (with ``<name>_std``, their standard errors, when the levels carry them); ``singular`` names the
+    quantities that grow with refinement by nature (peaks at sharp edges)."""
+    h = [lv[h_key] for lv in levels]
+    exp = expected_order or {}
+
+    def sigma(n):
+        s = [lv.get(f"{n}_std") for lv in levels]
+        return s if all(x is not None for x in s) else None
+
+    return {n: certify(h, [lv[n] for lv in levels], exp.get(n), singular=n in singular, sigma=sigma(n))
+            for n in names}
+
+
+def certificate_stats(certs: dict[str, Certificate]) -> dict[str, dict]:
+    """``stats["certificates"]`` and, for the report's convergence plot and older readers,
+    ``stats["richardson"]`` (value, order, finest and the *absolute* error estimate) from certificates."""
+    return {"certificates": {k: c.as_dict() for k, c in certs.items()},
+            "richardson": {k: {"value": c.value, "order": c.order if c.certified else None, "finest": c.finest,
+                               "error_estimate": c.error_estimate * abs(c.value)} for k, c in certs.items()}}
