@@ -5,7 +5,8 @@ traction elements make the exact theory first-order accurate in the element size
 ``benchmarks/exact_scaling.py`` in 3D, the halving errors of the 2D strips in ``tests/test_cect_line.py``). So
 the exact models solve on a sequence of grids whose element counts double (coarse to fine), and each quantity
 gets the shared convergence certificate of :func:`femcheck.solvers.convergence.certify`: the observed order of
-the last three grids, Richardson's extrapolation when it is in the asymptotic range, and a conservative
+the last three grids, Richardson's extrapolation when it is in the asymptotic range (with the observed order
+capped by the scheme's first order, :func:`femcheck.solvers.convergence.certify_formal`), and a conservative
 relative error estimate (GCI) either way. A quantity the solver imposes (the normal load under load control,
 the friction force of a shift problem) is exact on every grid and is certified as such.
 """
@@ -15,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
 from ..errors import InputError
-from ..solvers.convergence import Certificate, certify
+from ..solvers.convergence import Certificate, certify_formal
 
 #: Observed order expected of Kalker's scheme (first-order upwind transport, piecewise-constant tractions).
 KALKER_ORDER = 1.0
@@ -49,13 +50,16 @@ def grids(finest: int, levels: int, key: str, minimum: int = 2) -> list[int]:
 
 
 def refine(solve: Callable[[int], tuple[dict[str, float], Any]], cells: Sequence[int],
-           imposed: Sequence[str] = (), expected_order: dict[str, float | None] | None = None) -> Refinement:
+           imposed: Sequence[str] = (), expected_order: dict[str, float | None] | None = None,
+           negligible: dict[str, float] | None = None) -> Refinement:
     """Solve on every grid of ``cells`` (coarse to fine, each twice the previous) and certify each quantity.
 
     ``solve(n)`` returns (quantities, payload) for n elements (per axis in 3D). ``imposed``: quantities the
     solver makes exact on every grid (certified with zero error). ``expected_order``: per quantity the
     theoretical order handed to :func:`certify` (default :data:`KALKER_ORDER`; None: any consistent order in
-    [0.5, 4], e.g. for the BEM pressure of the normal problem).
+    [0.5, 4], e.g. for the BEM pressure of the normal problem). ``negligible``: per quantity an absolute size
+    (its units) below which it is zero to round-off on every grid (a force that vanishes by symmetry, e.g. Fx
+    under pure spin): certified as such, since a relative error of round-off means nothing.
     """
     orders = expected_order or {}
     levels, payload = [], None
@@ -70,9 +74,13 @@ def refine(solve: Callable[[int], tuple[dict[str, float], Any]], cells: Sequence
         if name in imposed:
             certs[name] = Certificate(series[-1], series[-1], None, 0.0, True,
                                       "imposed by the solver on every grid (load control)")
+        elif name in (negligible or {}) and max(abs(v) for v in series) <= negligible[name]:
+            certs[name] = Certificate(series[-1], series[-1], None, 0.0, True,
+                                      f"zero to round-off on every grid (|value| <= {negligible[name]:.1e}): "
+                                      "vanishes by symmetry")
         elif len(series) == 1:
             certs[name] = Certificate(series[-1], series[-1], None, float("inf"), False,
                                       "one grid: no refinement, no error estimate")
         else:
-            certs[name] = certify(h, series, expected_order=orders.get(name, KALKER_ORDER))
+            certs[name] = certify_formal(h, series, orders.get(name, KALKER_ORDER))
     return Refinement({k: c.value for k, c in certs.items()}, certs, levels, payload)
