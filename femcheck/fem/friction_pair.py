@@ -123,7 +123,7 @@ def _contact_dofs(basis, where) -> tuple[np.ndarray, np.ndarray]:
 
 
 def mirror_y(mesh: TriMesh) -> TriMesh:
-    """The mesh reflected about y = 0, triangles reordered to keep a positive orientation."""
+    """The mesh reflected about y = 0, triangles reordered to keep the original orientation."""
     return TriMesh(mesh.points * np.array([[1.0], [-1.0]]), mesh.triangles[::-1].copy())
 
 
