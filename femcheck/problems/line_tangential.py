@@ -5,13 +5,16 @@ carter-2d) or ``load.tangential_per_length`` (tangential force Q' on the cylinde
 cattaneo-2d) -- exactly one of them. Frame and signs: :mod:`femcheck.analytic.carter` (forces are those on the
 cylinder, the creep force opposes xi; the shift is positive in the direction of Q').
 
-Models: ``exact`` (Kalker's exact theory in 2D, :mod:`femcheck.cect.line`), ``analytic`` (Carter / 2D
-Cattaneo closed forms, quasi-identical bodies), ``linear`` and ``fastsim`` (rolling only: Kalker's linear theory
-and 2D FASTSIM, :mod:`femcheck.cect.simplified_line`), ``full_slip`` (rolling only: traction -mu p sgn(xi)), ``fem``
+Models: ``exact`` (Kalker's exact theory in 2D, :mod:`femcheck.cect.line`, on three grids with a convergence
+certificate per quantity; Panagiotopoulos' process for dissimilar bodies), ``analytic`` (Carter / 2D Cattaneo
+closed forms, quasi-identical bodies), ``linear`` and ``fastsim`` (rolling only: Kalker's linear theory and 2D
+FASTSIM, :mod:`femcheck.cect.simplified_line`), ``full_slip`` (rolling only: traction -mu p sgn(xi)), ``fem``
 (2D plane-strain FE reference with Coulomb friction, :mod:`femcheck.fem.friction_line`; stored reference).
 Quantities: rolling -- ``creep_force_x`` (N/m), ``adhesion_length`` (m), ``adhesion_fraction`` (-);
-shift -- ``shift`` (m, the micro-slip part delta(Q') - delta_stick(Q'), see the conventions), ``stick_half_width``
-(m); both -- ``half_width`` (m), ``p_max`` (Pa), ``total_force`` (N/m, normal).
+shift -- ``shift`` (m, the micro-slip part delta(Q') - delta_stick(Q'), delta_stick the fully adhered state on
+the frictionless pressure: :mod:`femcheck.cect.line`), ``stick_half_width`` (m); both -- ``half_width`` (m),
+``p_max`` (Pa), ``total_force`` (N/m, normal). The fem model adds ``shift_weighted`` (an alternative estimate,
+see :func:`femcheck.fem.friction_pair.weighted_shift`).
 """
 from __future__ import annotations
 
@@ -224,8 +227,10 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
         q.update(shift=c.shift, stick_half_width=c.stick_half_width)
         fields = {"x": x, "pressure": c.pressure(x), "traction": c.traction(x)}
         stats = {"problem": "shift", "E_star": h.modulus,
-                 "note": "Johnson's process: the pressure-induced tangential displacement does not enter the "
-                         "shift, so the closed form holds for dissimilar bodies within that process"}
+                 "note": "with the normal load applied without friction, the pressure-induced tangential "
+                         "displacement does not enter the shift: the closed form holds for dissimilar bodies "
+                         "under Johnson's process, not under Panagiotopoulos' (the exact model's default), where "
+                         "the tangential traction tilts the pressure"}
     return ModelResult("analytic", quantities=q, stats=stats, fields=fields)
 
 
@@ -307,7 +312,7 @@ def saturation_creepage(params: dict[str, Any]) -> float:
 def stress_cases(scene: Scene) -> list:
     """Extremes: friction 0.01-2, creepage from 1e-6 of saturation through 0.99, 1.0, 1.01 and 100x
     saturation (rolling) or Q'/(mu W') from 1e-6 to 0.9999 (shift), nu -> 0.4999, a rigid cylinder
-    (dissimilar bodies, Johnson's process), loads over six decades down to 1e-6 of the scene's.
+    (dissimilar bodies, Panagiotopoulos' process), loads over six decades down to 1e-6 of the scene's.
     Expected "inaccurate" cases (resolution, not instability): Q'/(mu W') <= 1e-3, whose slip zone
     a (1 - sqrt(1 - Q'/(mu W'))) is thinner than one strip, and 0.99 of saturation, whose adhesion zone is
     four strips long."""
