@@ -267,7 +267,9 @@ def _radii_for(a_over_b: float, P: float, modulus: float, rx: float = 0.01) -> f
 
     if a_over_b == 1.0:
         return rx
-    ratio = lambda lr: (lambda h: h.semi_axis_x / h.semi_axis_y)(elliptic_contact(P, rx, rx * np.exp(lr), modulus))  # noqa: E731
+    def ratio(lr):
+        h = elliptic_contact(P, rx, rx * np.exp(lr), modulus)
+        return h.semi_axis_x / h.semi_axis_y
     return rx * np.exp(brentq(lambda lr: ratio(lr) - a_over_b, -6.0, 6.0, xtol=1e-12))
 
 

@@ -88,7 +88,8 @@ def test_full_meshes_are_mirrored_halves():
     block = block_full(40 * a, 20 * a, spec)
     mirrored = fp.mirror_y(block)
     P, Q = block.points[:, block.triangles[:, 0]], mirrored.points[:, mirrored.triangles[:, 0]]
-    orient = lambda P: (P[0, 1] - P[0, 0]) * (P[1, 2] - P[1, 0]) - (P[0, 2] - P[0, 0]) * (P[1, 1] - P[1, 0])  # noqa: E731
+    def orient(T):
+        return (T[0, 1] - T[0, 0]) * (T[1, 2] - T[1, 0]) - (T[0, 2] - T[0, 0]) * (T[1, 1] - T[1, 0])
     assert np.sign(orient(P)) == np.sign(orient(Q))
     for mesh, area, deficit in ((block, 800 * a * a, 1e-12), (mirrored, 800 * a * a, 1e-12),
                                 (cylinder_full(R, MeshSpec(0.1 * a, 1.3 * a, 0.4, R / 5)), np.pi * R**2 / 2,

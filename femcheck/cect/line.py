@@ -17,8 +17,9 @@ Influence coefficients (uniform strips of width dx, piecewise-constant traction)
     first by Betti's reciprocity (the pair's compliance is symmetric: q works on u, p on the gap opening u_n).
     It is the plane-strain form of the 3D coefficients A_xz = -A_zx of :mod:`femcheck.cect.influence`
     (kappa = 2K/G with Kalker's difference parameter K), and kappa E* = 2 beta with Dundurs' beta (Johnson
-    1985 p. 110, bodies in the same order; beta < 0 when body 1 is the stiffer one). kappa = 0 for quasi-identical bodies. On the strips
-    both kernels are exact for uniform strips: u_i = -(kappa/2) dx sum_j sgn(i - j) p_j (no self term).
+    1985 p. 110, bodies in the same order; beta < 0 when body 1 is the stiffer one). kappa = 0 for
+    quasi-identical bodies. On the strips both kernels are exact for uniform strips:
+    u_i = -(kappa/2) dx sum_j sgn(i - j) p_j (no self term).
 
 Coupled processes (Kalker 1990 §5.2; Vollebregt's CONTACT user guide §5.3 on the Bentall-Johnson rollers):
   * **Johnson's process** (``process="johnson"``): the normal problem is solved once without friction and its

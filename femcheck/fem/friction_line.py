@@ -20,7 +20,8 @@ Error bars (the shared certificate format, :func:`femcheck.solvers.convergence.c
   reference's disagreement with the exact theory (-52.3, Johnson's process) was this effect.
 The reported value of a quantity is the mesh-extrapolated value plus the block correction (extrapolated minus
 the finest mesh's block); its error estimate is the sum of the two relative estimates, and it is certified
-when both are (a scattering block sequence bounded below the mesh error counts as negligible, :func:`combine`). stats carry both certificates per quantity, every level and every block.
+when both are (a scattering block sequence bounded below the mesh error counts as negligible, :func:`combine`).
+stats carry both certificates per quantity, every level and every block.
 
 Quantities: rolling -- creep_force_x (N/m, on body 1), adhesion_length (m), adhesion_fraction (-); shift --
 ``shift`` (m): the FE's own micro-slip shift, the direct difference delta(Q') - delta_stick(Q') of the
@@ -164,8 +165,8 @@ def block_certificate(scales: list[float], values: list[float], name: str) -> Ce
 
 def model(params: dict, progress=None):
     """FE reference of the ``line_tangential`` kind (module doc): steady rolling (``kinematics.xi``) or
-    Cattaneo shift (``load.tangential_per_length``) on ``numerics.fem_levels`` meshes and
-    three block sizes (``numerics.fem_block_scale`` x 1, 2, 4); quantities are the certificate values (stats["certificates"]),
+    Cattaneo shift (``load.tangential_per_length``) on ``numerics.fem_levels`` meshes and three block sizes
+    (``numerics.fem_block_scale`` x 1, 2, 4); quantities are the certificate values (stats["certificates"]),
     stats carry every level (``levels``), every block (``blocks``) and both certificates (``mesh_certificates``,
     ``block_certificates``)."""
     from ..analytic import hertz
