@@ -31,7 +31,7 @@ DENSE_GRIDS = (16, 32, 48)
 
 def solve(n: int, solver: str) -> dict:
     t0 = time.perf_counter()
-    res = femcheck.run("creep-curve", overrides={"numerics.exact_cells": n, "numerics.exact_solver": solver,
+    res = femcheck.run("creep-curve", overrides={"numerics.exact_cells": n, "numerics.exact_levels": 1, "numerics.exact_solver": solver,
                                                  "models.run": ["exact"], "models.references": ["exact"]})
     wall = time.perf_counter() - t0
     m = res.models["exact"]

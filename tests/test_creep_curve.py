@@ -34,12 +34,13 @@ def test_models_bracket_the_exact_creep_force(combined):
 
 
 def test_exact_tends_to_linear_theory_at_small_creepage():
-    # at xi = 5e-4 (5 % of saturation) the exact force equals linear theory to within the creep-coefficient
-    # extrapolation error and the slip of a few leading-edge cells (measured 0.0 %)
-    m = run(load_scene("creep-curve", {"kinematics.xi": 5e-4, "kinematics.eta": 0.0, "kinematics.phi": 0.0}),
+    # at xi = 1e-5 (about 0.1 % of saturation) the exact force equals linear theory to within the creep-
+    # coefficient extrapolation error (C11 +/- 0.4 %; measured +0.15 %); at xi = 5e-4 the trailing-edge slip
+    # already lowers it by 2.1 % (the single 31^2 grid used to hide that behind its own +2 % error)
+    m = run(load_scene("creep-curve", {"kinematics.xi": 1e-5, "kinematics.eta": 0.0, "kinematics.phi": 0.0}),
             models=["exact", "linear"]).models
     assert m["exact"].quantities["creep_force_x"] == pytest.approx(m["linear"].quantities["creep_force_x"],
-                                                                   rel=0.01)
+                                                                   rel=0.005)
 
 
 def test_report_shows_traction_and_adhesion_areas(tmp_path, combined):

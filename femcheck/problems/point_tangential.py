@@ -28,6 +28,7 @@ from ..analytic import hertz, mindlin as mindlin_closed_form
 from ..bem.halfspace import grid as make_grid
 from ..cect import creep as creep_coefficients_module
 from ..cect.exact import solve_contact
+from ..cect.refinement import grids, refine
 from ..cect.influence import combined_constants
 from ..errors import InputError
 from ..qoi import ellipse_fit
@@ -57,9 +58,12 @@ SCHEMA: dict[str, Key] = {
     "kinematics.speed": Key("float", "m/s", "rolling speed V (scales slip velocities and frictional power)",
                             lo=0.0),
     **model_keys(MODEL_NAMES),
-    "numerics.exact_cells": Key("int", "-", "exact solver: elements per axis of the potential contact grid "
-                                f"(dense solver: at most {MAX_DENSE_CELLS})", lo=9, hi=513, lo_closed=True,
+    "numerics.exact_cells": Key("int", "-", "exact solver: elements per axis of the finest potential contact "
+                                f"grid (dense solver: at most {MAX_DENSE_CELLS})", lo=9, hi=513, lo_closed=True,
                                 hi_closed=True),
+    "numerics.exact_levels": Key("int", "-", "exact solver: grids of finest / 2^k elements per axis (k < levels); "
+                                 "the discretisation error estimate needs >= 3", lo=1, hi=5, lo_closed=True,
+                                 hi_closed=True),
     "numerics.exact_solver": Key("str", "-", "exact solver's tangential problem: dense (LU of the Newton matrix), "
                                  "fft (matrix-free Newton-GMRES with DC-FFT products) or auto (fft above "
                                  "300 contact elements)", choices=("auto", "dense", "fft")),
@@ -89,7 +93,11 @@ DEFAULTS: dict[str, Any] = {
     "kinematics.speed": 1.0,
     "models.run": ["exact", "analytic"],
     "models.references": ["analytic"],
-    "numerics.exact_cells": 31,
+    # 24^2, 48^2, 96^2 elements over +/- 1.1 semi-axes, Richardson at first order (Kalker's scheme; measured in
+    # benchmarks/exact_scaling.py): on creep-curve the extrapolated forces and spin moment are within 0.02 % of
+    # the extrapolation from 64^2, 128^2, 256^2 (the 96^2 grid alone: 0.4 %, 0.35 %, 0.8 %); 0.7 s
+    "numerics.exact_cells": 96,
+    "numerics.exact_levels": 3,
     "numerics.exact_domain": 1.1,
     "numerics.exact_tol": 1e-9,
     "numerics.exact_solver": "auto",
@@ -146,6 +154,7 @@ def validate(params: dict[str, Any]) -> None:
                          "kinematics.xi|eta|phi (steady rolling)" + (" -- both are set" if has_q else
                                                                      " -- neither is set"))
     check_body_pair(params, ("body1", "body2"))
+    grids(params["numerics.exact_cells"], params["numerics.exact_levels"], "numerics.exact_cells", 8)
     if params.get("numerics.exact_solver") == "dense" and params.get("numerics.exact_cells", 0) > MAX_DENSE_CELLS:
         raise InputError("numerics.exact_cells", f"{params['numerics.exact_cells']} with numerics.exact_solver = dense;"
                          f" allowed: <= {MAX_DENSE_CELLS} (or exact_solver = fft / auto)")
@@ -170,35 +179,55 @@ def _hertz_quantities(h: hertz.EllipticContact) -> dict[str, float]:
 
 
 def exact(scene: Scene, progress=None) -> ModelResult:
-    """Kalker's exact theory on an n x n grid over +/- exact_domain Hertz semi-axes."""
+    """Kalker's exact theory on n x n grids over +/- exact_domain Hertz semi-axes, n = exact_cells / 2^k for
+    k < exact_levels: every quantity carries a convergence certificate (``stats["certificates"]``,
+    :mod:`femcheck.cect.refinement`) and is reported as its certificate value (Richardson's extrapolation when
+    the grids are in the asymptotic range, else the finest grid). Fields and solver statistics are the finest
+    grid's."""
     p = scene.params
     h = _hertz(p)
     cc = _constants(p)
     rx, ry = radii(p)
-    n, dom = p["numerics.exact_cells"], p["numerics.exact_domain"]
-    g = make_grid(dom * h.semi_axis_x, dom * h.semi_axis_y, n, n)
+    dom = p["numerics.exact_domain"]
     gap = lambda X, Y: X * X / (2.0 * rx) + Y * Y / (2.0 * ry)  # noqa: E731
     kind = problem_type(p)
-    if kind == "shift":
-        sol = solve_contact(g, gap, cc, p["load.normal"], p["friction.mu"],
-                            tangential_load=(-p["load.tangential"], 0.0), tol=p["numerics.exact_tol"],
-                            tangential_solver=p["numerics.exact_solver"])
-    else:
-        sol = solve_contact(g, gap, cc, p["load.normal"], p["friction.mu"], creepages=creepages(p),
-                            rolling_speed=p["kinematics.speed"], tol=p["numerics.exact_tol"],
-                            tangential_solver=p["numerics.exact_solver"])
-    X, Y = g.mesh()
-    fit = ellipse_fit(X, Y, sol.pressure)
-    q = {"p_max": float(sol.pressure.max()), "total_force": sol.normal_force, "semi_axis_x": fit["semi_axis_x"],
-         "semi_axis_y": fit["semi_axis_y"], "creep_force_x": sol.creep_force_x}
-    if kind == "shift":
-        # the stick zone's equivalent radius from its area (model-free; within ~dx of the true boundary)
-        q.update(shift=float(np.sign(p["load.tangential"]) * sol.shift[0]) if p["load.tangential"] else 0.0,
-                 stick_radius=float(np.sqrt(sol.adhesion.sum() * g.cell_area / np.pi)),
-                 creep_force_y=sol.creep_force_y)
-    else:
-        q.update(creep_force_y=sol.creep_force_y, spin_moment=sol.spin_moment,
-                 adhesion_fraction=sol.adhesion_fraction)
+
+    def solve(n: int):
+        if progress:
+            progress(f"exact: {n} x {n} elements")
+        g = make_grid(dom * h.semi_axis_x, dom * h.semi_axis_y, n, n)
+        if kind == "shift":
+            sol = solve_contact(g, gap, cc, p["load.normal"], p["friction.mu"],
+                                tangential_load=(-p["load.tangential"], 0.0), tol=p["numerics.exact_tol"],
+                                tangential_solver=p["numerics.exact_solver"])
+        else:
+            sol = solve_contact(g, gap, cc, p["load.normal"], p["friction.mu"], creepages=creepages(p),
+                                rolling_speed=p["kinematics.speed"], tol=p["numerics.exact_tol"],
+                                tangential_solver=p["numerics.exact_solver"])
+        X, Y = g.mesh()
+        fit = ellipse_fit(X, Y, sol.pressure)
+        q = {"p_max": float(sol.pressure.max()), "total_force": sol.normal_force,
+             "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"],
+             "creep_force_x": sol.creep_force_x, "creep_force_y": sol.creep_force_y}
+        if kind == "shift":
+            # the stick zone's equivalent radius from its area (model-free; within ~dx of the true boundary)
+            q.update(shift=float(np.sign(p["load.tangential"]) * sol.shift[0]) if p["load.tangential"] else 0.0,
+                     stick_radius=float(np.sqrt(sol.adhesion.sum() * g.cell_area / np.pi)))
+        else:
+            q.update(spin_moment=sol.spin_moment, adhesion_fraction=sol.adhesion_fraction)
+        return q, (g, sol)
+
+    # the shift problem imposes the friction force (load control); the normal load is imposed in both
+    imposed = ("total_force", "creep_force_x", "creep_force_y") if kind == "shift" else ("total_force",)
+    # forces and moment that vanish by symmetry (Fx under pure spin, ...): round-off relative to mu P (N) and
+    # mu P c (N m)
+    zero = 1e-9 * p["friction.mu"] * p["load.normal"]
+    negligible = {"creep_force_x": zero, "creep_force_y": zero,
+                  "spin_moment": zero * np.sqrt(h.semi_axis_x * h.semi_axis_y)}
+    ref = refine(solve, grids(p["numerics.exact_cells"], p["numerics.exact_levels"], "numerics.exact_cells"),
+                 imposed=imposed, expected_order={"p_max": None, "semi_axis_x": None, "semi_axis_y": None},
+                 negligible=negligible)
+    g, sol = ref.finest
     stats = {**{k: v for k, v in sol.stats.items() if k != "history"}, "problem": kind,
              # the keys every model reports (report table, bench): Newton iterations and the Coulomb residual
              "iterations": sol.stats.get("newton_iterations"), "residual": sol.stats.get("tangential_residual"),
@@ -206,7 +235,7 @@ def exact(scene: Scene, progress=None) -> ModelResult:
              "coupling_K": cc.coupling, "G": cc.shear_modulus, "nu": cc.poisson,
              "a_over_dx": h.semi_axis_x / g.dx,
              "solver": ("semi-smooth Newton (matrix-free FGMRES, DC-FFT)" if sol.stats["tangential_solver"] == "fft"
-                        else "semi-smooth Newton (dense LU)") + " + Polonsky-Keer CG"}
+                        else "semi-smooth Newton (dense LU)") + " + Polonsky-Keer CG", **ref.stats()}
     if kind == "rolling":
         stats["frictional_power"] = sol.frictional_power
     j = g.ny // 2
@@ -215,7 +244,7 @@ def exact(scene: Scene, progress=None) -> ModelResult:
               "py_map": sol.py, "slip_x_map": sol.slip_x, "slip_y_map": sol.slip_y}
     if sol.power_density is not None:
         fields["power_density_map"] = sol.power_density
-    return ModelResult("exact", quantities=q, stats=stats, fields=fields)
+    return ModelResult("exact", quantities=dict(ref.values), stats=stats, fields=fields)
 
 
 def analytic(scene: Scene, progress=None) -> ModelResult:
@@ -387,10 +416,11 @@ def stress_cases(scene: Scene) -> list:
 
 
 def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
-    """Exact solver: elements per axis (the dense Newton costs O(n^6) per step and the matrix-free one
+    """Exact solver on one grid (no refinement: the sweep measures a single grid's cost and error): elements per
+    axis (the dense Newton costs O(n^6) per step and the matrix-free one
     O(n^2 log n) per GMRES iteration: "auto" switches to it above 300 contact elements, so the sweep reaches
     129 x 129); FASTSIM: cells per strip and strips."""
-    sweeps = {"exact": [{"numerics.exact_cells": n} for n in (15, 21, 31, 41, 65, 129)]}
+    sweeps = {"exact": [{"numerics.exact_cells": n, "numerics.exact_levels": 1} for n in (15, 21, 31, 41, 65, 129)]}
     if problem_type(scene.params) == "rolling":
         sweeps["fastsim"] = [{"numerics.fastsim_cells": n} for n in (5, 10, 20, 40, 80, 160)]
         sweeps["strip"] = [{"numerics.strips": n} for n in (10, 20, 50, 100, 200, 400)]

@@ -208,3 +208,21 @@ def certificate_stats(certs: dict[str, Certificate]) -> dict[str, dict]:
     return {"certificates": {k: c.as_dict() for k, c in certs.items()},
             "richardson": {k: {"value": c.value, "order": c.order if c.certified else None, "finest": c.finest,
                                "error_estimate": c.error_estimate * abs(c.value)} for k, c in certs.items()}}
+def certify_formal(h: list[float], q: list[float], formal_order: float | None) -> Certificate:
+    """:func:`certify` with the observed order limited by the discretisation's formal order (Roache 1998 §5.9,
+    ASME V&V 20: the extrapolation never uses a higher order than the scheme has): when the last three levels
+    converge monotonically *faster* than ``formal_order`` (three levels scatter: a small leading coefficient or
+    a stick/slip boundary moving irregularly across the nodes give apparent orders of 1.5-4 for a first-order
+    quantity), Richardson's extrapolation and the GCI use ``formal_order`` instead. This is conservative if the
+    quantity converges at least at its formal order: the extrapolated value then lies between the finest level
+    and the limit, and 1.25 |value - finest| bounds the distance to it. ``formal_order`` None: plain
+    :func:`certify` with no expected order."""
+    c = certify(h, q, expected_order=formal_order)
+    if formal_order is None or c.order is None or c.order <= formal_order:
+        return c
+    r = h[-2] / h[-1]
+    value = q[-1] + (q[-1] - q[-2]) / (r**formal_order - 1.0)
+    err = SAFETY_CERTIFIED * abs(value - q[-1]) / (abs(value) if value != 0 else 1.0)
+    return Certificate(float(value), float(q[-1]), c.order, float(err), True,
+                       f"observed order {c.order:.2f} >= the formal order {formal_order:g}: extrapolated at order "
+                       f"{formal_order:g}")
