@@ -13,7 +13,7 @@ from ..errors import InputError
 KINDS = {"line_contact": "line_contact", "point_contact": "point_contact", "roller_contact": "roller_contact",
          "indent_contact": "indent_contact", "srb_contact": "srb_contact",
          "line_tangential": "line_tangential", "point_tangential": "point_tangential",
-         "layer_contact": "layer_contact"}
+         "layer_contact": "layer_contact", "groove_rolling": "groove_rolling"}
 
 
 def problem(kind: str) -> ModuleType:
