@@ -99,18 +99,20 @@ def _solve(contact, mu, nx=41, ns=81, kappa=True, influence="halfspace", solver=
 @pytest.mark.parametrize("contact", sb.CONTACTS)
 def test_frictionless_limit_matches_elliptic_hertz(contact, influence):
     # check 7: mu = 1e-6 at the nominal pose, 5.5 kN along the nominal normal: semi-axes and p_max within 2 % of
-    # elliptic Hertz, the contact-angle span 10.0 / 10.95 deg within 0.5 deg (measured at 41 x 81: a -0.25 %,
-    # b -0.13 %, p_max +0.15 %, span 10.005 / 10.937 deg)
+    # elliptic Hertz, the contact-angle span 10.0 / 10.95 deg within 0.5 deg (spec). Measured at 41 x 81:
+    # a -0.25 / -0.19 %, b -0.14 / -0.13 %, p_max +0.15 / +0.19 %, approach +0.21 / +0.26 %, span 10.005 /
+    # 10.937 deg; asserted tighter (0.5-1 %) so that a 2 % error in the contact modulus (p_max, approach 1.3 %)
+    # cannot pass
     r, ci, h = _solve(contact, 1e-6, influence=influence)
     s, x = ci.grid.s, ci.grid.x
     j = int(np.argmin(np.abs(s - r.pressure_centre)))
     a = half_width(x, r.pressure[:, j])
     ridge = r.pressure.max(axis=0)
     right, left = contact_edge(s, ridge), -contact_edge(-s[::-1], ridge[::-1])
-    assert a == pytest.approx(h.semi_axis_x, rel=0.02)
-    assert 0.5 * (right - left) == pytest.approx(h.semi_axis_y, rel=0.02)
-    assert r.pressure.max() == pytest.approx(h.p_max, rel=0.02)
-    assert r.approach == pytest.approx(h.approach, rel=0.02)
+    assert a == pytest.approx(h.semi_axis_x, rel=0.01)
+    assert 0.5 * (right - left) == pytest.approx(h.semi_axis_y, rel=0.005)
+    assert r.pressure.max() == pytest.approx(h.p_max, rel=0.005)
+    assert r.approach == pytest.approx(h.approach, rel=0.006)
     span = np.degrees((right - left) / ci.grid.surface.radius)
     assert span == pytest.approx(10.0 if contact == "inner" else 10.95, abs=0.5)
     # the load is the pressure resultant along the nominal normal

@@ -19,7 +19,22 @@ Angular velocities in B: ring j turns at omega_j - omega_m about Y, the roller a
 contact surface of contact j is the groove circle of ring j (:func:`femcheck.geometry.conformal_surface
 .groove_profile`) with s = 0 on the line through the groove centre parallel to e_z, s increasing towards +e_y,
 the rolling direction x_j = -sign(omega_j - omega_m) X (the material flows along -x_j): x_I = -X, x_E = +X for
-omega_I > omega_m > 0 = omega_E. Body 1 of the contact is the roller, body 2 the ring.
+omega_I > omega_m > 0 = omega_E. Body 1 of the contact is the roller, body 2 the ring. Both local triads
+(x_j, t, n) are left-handed: dw_s/dx = -(spin about n) (5.503 / 4.439 rad/s about n at the nominal state).
+
+Typical use (one contact of a roller equilibrium; SI throughout)::
+
+    b = SEED_000
+    om, orr = nominal_speeds(b, OMEGA_INNER_SEED_000)                  # or the current Newton iterate
+    ci = contact_input(b, Pose(d_Y, d_Z, tilt, skew), "inner", om, orr, OMEGA_INNER_SEED_000, 0.0,
+                       1.35 * a_H, 1.25 * b_H, 61, 121, s_centre=s_c, ring_shift=delta * b.e_z)
+    res = solve_conformal(ci.grid.grid, ci.gap, constants, mu, np.stack([ci.slip.wx, ci.slip.ws]),
+                          ci.speeds.reference, ci.speeds.kappa, s=ci.grid.s, warm=previous)   # cect.conformal
+    R = resultants(res, ci.grid, ci.roller.centre)       # force (N) and moment about C (N m), in B
+    f_lat = res.force_s / (mu * N)                       # towards the mid-plane; f_x = R.force @ x_p / (mu N)
+
+Keep nx, ns, the half-widths and s_centre fixed within a Newton iteration (the influence spectra are cached per
+grid); for a Jacobian column in omega only, pass ``normal=base.normal`` (the gap does not change).
 """
 from __future__ import annotations
 
