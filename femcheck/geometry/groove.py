@@ -67,10 +67,6 @@ class GrooveRolling:
         """Ring angular velocity (rad/s) or rail speed (m/s) for the surface speed ``speed`` V (m/s)."""
         return -speed if self.straight else -speed * self.ring_curvature
 
-    def body_rate(self, body_speed: float) -> float:
-        """Body angular velocity (rad/s) for its surface speed ``body_speed`` (m/s) at the nominal point."""
-        return body_speed / self.rolling_radius
-
     @property
     def hertz_radii(self) -> tuple[float, float]:
         """(Rx, Ry) (m) at the nominal point."""
