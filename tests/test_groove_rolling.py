@@ -135,3 +135,24 @@ def test_bad_input_is_one_line_exit_2():
     load_scene("groove-rolling", {"load.normal": 0.999 * limit})
     with pytest.raises(InputError):
         load_scene("groove-rolling", {"load.normal": 1.001 * limit})
+
+
+def test_dissimilar_bodies_couple_and_still_roll_freely():
+    # a rigid crowned body on a steel ring (K = -0.2): normal and tangential problems couple (Panagiotopoulos
+    # process under load control in every free-rolling solve); the load and F_x = 0 are still met. The
+    # rolling speed V(s) is the steel ring's alone (compliance weights, E8)
+    p = _params(**{"materials.body1.rigid": True})
+    spec = GridSpec(25, 49)
+    c = solve_groove_cect(gr.geometry(p), 5500.0, 0.1, gr._constants(p), p["kinematics.speed"], spec,
+                          compliance_weights=(0.0, 1.0))
+    assert c.stats["process"] == "Panagiotopoulos" and c.stats["free_rolling_residual"] < 1e-7
+    assert c.quantities["total_force"] == pytest.approx(5500.0, rel=1e-7)
+    assert c.result.force_x == pytest.approx(0.0, abs=1e-7 * 0.1 * 5500)
+    # V(s) follows the ring: its kappa grows towards the patch ends (the groove's radius grows), unlike the
+    # identical-body mean, which the roller's falling radius dominates
+    k = c.result.kappa
+    assert k[0] > 1.0 and k[-1] > 1.0
+    pl = solve_groove_planar(gr.geometry(p), 5500.0, 0.1, gr._constants(p), p["kinematics.speed"], spec)
+    assert pl.stats["process"] == "Panagiotopoulos" and pl.stats["free_rolling_residual"] < 1e-7
+    # planar and conformal normal problems agree within 1 % except p_max (+3 %: the coupling differs)
+    assert pl.quantities["approach"] == pytest.approx(c.quantities["approach"], rel=0.01)

@@ -123,9 +123,13 @@ def _free_rolling(evaluate, guess: float, step: float, lo: float, hi: float, sca
 
 def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: CombinedConstants, speed: float,
                       spec: GridSpec = GridSpec(), influence: str = "halfspace", variable_dq: bool = True,
-                      solver: str = "auto", tol: float = 1e-9) -> GrooveSolution:
+                      solver: str = "auto", tol: float = 1e-9,
+                      compliance_weights: tuple[float, float] = (1.0, 1.0)) -> GrooveSolution:
     """Free rolling by the conformal exact theory on the developed groove grid (module docstring); the grid is
-    enlarged (x 1.3 per touched side, up to 5 times) when the contact reaches its edge."""
+    enlarged (x 1.3 per touched side, up to 5 times) when the contact reaches its edge. ``compliance_weights``
+    (body, ring) weight the two rolling speeds in V(s) (E8: 1/E* of each body, 0 for a rigid one). When the
+    normal and tangential problems couple (dissimilar bodies, angle-corrected coefficients) every solve is a
+    Panagiotopoulos process under load control."""
     t0 = time.perf_counter()
     rx, ry = geom.hertz_radii
     h = elliptic_contact(load, rx, ry, constants.contact_modulus)
@@ -133,6 +137,7 @@ def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: Co
     ring = geom.ring()
     rate = geom.ring_rate(speed)
     surface = geom.surface()
+    coupled = influence != "halfspace" or constants.coupling != 0.0
     for enlargement in range(MAX_ENLARGEMENTS + 1):
         dg = developed_grid(surface, dom[0] * h.semi_axis_x, dom[1] * h.semi_axis_y, spec.cells_x, spec.cells_s)
         wts = np.broadcast_to(dg.normals @ Z, (spec.cells_x, spec.cells_s))
@@ -157,14 +162,13 @@ def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: Co
                     abs(omega - state["omega"]) * geom.rolling_radius < 0.25 * sat * speed
                 w = ring_part + omega * body_unit
                 slip = np.stack([w @ dg.surface.ex, np.einsum("ijk,jk->ij", w, dg.tangents)])
-                sp = rolling_speeds(dg, body, omega, ring, rate)
-                r = solve_conformal(dg.grid, gap if influence != "halfspace" else normal.gap, constants, mu, slip,
+                sp = rolling_speeds(dg, body, omega, ring, rate, compliance_weights=compliance_weights)
+                r = solve_conformal(dg.grid, gap if coupled else normal.gap, constants, mu, slip,
                                     sp.reference, sp.kappa if variable_dq else None,
-                                    load=load if influence != "halfspace" else None, load_weights=wts
-                                    if influence != "halfspace" else None, approach0=normal.approach,
-                                    influence=influence, radius=surface.radius, s=dg.s, tol=tol,
-                                    tangential_solver=solver, warm=state["warm"] if near else None,
-                                    normal=normal if influence == "halfspace" else None)
+                                    load=load if coupled else None, load_weights=wts if coupled else None,
+                                    approach0=normal.approach, influence=influence, radius=surface.radius,
+                                    s=dg.s, tol=tol, tangential_solver=solver,
+                                    warm=state["warm"] if near else None, normal=None if coupled else normal)
                 state["warm"], state["omega"] = r, omega
                 return r.force_x, (r, sp)
 
@@ -237,7 +241,10 @@ def solve_groove_planar(geom: GrooveRolling, load: float, mu: float, constants: 
 
         try:
             sat = 3.0 * mu * load / (constants.shear_modulus * h.semi_axis_x * h.semi_axis_y * 4.0)
-            xi, res, evals, residual = _free_rolling(evaluate, 0.0, 0.1 * sat, -sat, sat, mu * load, "planar")
+            # dissimilar bodies (K != 0) shift the free-rolling creepage by up to a few saturation creepages
+            # (Bentall & Johnson): bounds +-20 sat
+            xi, res, evals, residual = _free_rolling(evaluate, 0.0, 0.1 * sat, -20 * sat, 20 * sat, mu * load,
+                                                     "planar")
             break
         except GridTooSmall:
             if enlargement == MAX_ENLARGEMENTS:

@@ -154,9 +154,12 @@ def cect(scene: Scene, progress=None) -> ModelResult:
     p = scene.params
     if progress:
         progress("cect: conformal exact theory, free rolling")
+    # E8: the rolling speeds of the two bodies weighted by their compliances (1 - nu^2)/E (0 when rigid)
+    weights = tuple(0.0 if p[f"materials.{b}.rigid"] else (1.0 - p[f"materials.{b}.nu"] ** 2) / p[f"materials.{b}.E"]
+                    for b in ("body1", "body2"))
     sol = solve_groove_cect(geometry(p), p["load.normal"], p["friction.mu"], _constants(p), p["kinematics.speed"],
                             _spec(p), p["numerics.conformal_influence"], p["numerics.variable_dq"],
-                            p["numerics.conformal_solver"], p["numerics.conformal_tol"])
+                            p["numerics.conformal_solver"], p["numerics.conformal_tol"], weights)
     r, dg = sol.result, sol.grid
     stats = {**sol.stats, "n_elements": r.grid.nx * r.grid.ny,
              "solver": "conformal CECT: semi-smooth Newton ("
