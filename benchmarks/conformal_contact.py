@@ -1,9 +1,9 @@
 """Cost of one conformal contact solve (femcheck.cect.conformal) on seed 000's bearing at 5.5 kN, mu = 0.1, on the
 grids the roller equilibrium uses (41 x 81, 61 x 121, 81 x 161 over +-1.35 a_H x +-1.25 b_H).
 
-State: nominal pose, the inner ring displaced along e_z by the sum of both contacts' Hertz approaches (so each
-contact carries about 5.5 kN under approach control, as in the equilibrium), speeds of strip theory H+C (near the
-equilibrium: partial slip with two zero-slip bands). Per contact and grid:
+State: the roller displaced by the outer contact's Hertz approach along e_z and the inner ring by the sum of
+both (so each contact carries about 5.5 kN under approach control, as in the equilibrium), speeds of strip theory
+H+C (near the equilibrium: partial slip with two zero-slip bands). Per contact and grid:
 - ``geometry``: developed grid, exact gap (ray intersection), rigid slip, kappa;
 - ``cold``: normal (Polonsky-Keer, approach control) + tangential (matrix-free Newton-FGMRES) from zero;
 - ``omega``: omega_R perturbed by 1e-7 (a Jacobian column of the equilibrium): tangential only, the normal
@@ -52,6 +52,8 @@ def _best(f):
 def main() -> dict:
     hz = {c: elliptic_contact(5500.0, *sb.hertz_radii(B)[c], STEEL.contact_modulus) for c in sb.CONTACTS}
     shift = (hz["inner"].approach + hz["outer"].approach) * B.e_z
+    d = hz["outer"].approach * B.e_z                     # the roller moves towards the outer ring
+    P0 = sb.Pose(d_Y=float(d[1]), d_Z=float(d[2]))
     hc = strip_bearing(B, 5500.0, MU, 207e9, 0.3, OMEGA_I)
     om, orr = hc.omega_m, hc.omega_R
     rows = []
@@ -59,9 +61,9 @@ def main() -> dict:
         for c in sb.CONTACTS:
             h = hz[c]
 
-            def inputs(pose=sb.Pose(), o_r=orr):
+            def inputs(pose=P0, o_r=orr):
                 return sb.contact_input(B, pose, c, om, o_r, OMEGA_I, 0.0, 1.35 * h.semi_axis_x,
-                                        1.25 * h.semi_axis_y, nx, ns, ring_shift=shift)
+                                        1.25 * h.semi_axis_y, nx, ns, inner_ring_shift=shift)
 
             def solve(ci, **kw):
                 return solve_conformal(ci.grid.grid, ci.gap, STEEL, MU, np.stack([ci.slip.wx, ci.slip.ws]),
@@ -71,9 +73,9 @@ def main() -> dict:
             base, t_cold = _best(lambda: solve(ci))
             ci_w, _ = _best(lambda: inputs(o_r=orr * (1 + 1e-7)))
             r_w, t_omega = _best(lambda: solve(ci_w, warm=base, normal=base.normal))
-            ci_p, _ = _best(lambda: inputs(pose=sb.Pose(d_Y=1e-9)))
+            ci_p, _ = _best(lambda: inputs(pose=sb.Pose(P0.d_Y + 1e-9, P0.d_Z)))
             r_p, t_pose = _best(lambda: solve(ci_p, warm=base))
-            ci_s, _ = _best(lambda: inputs(pose=sb.Pose(d_Y=1e-7, tilt=1e-6), o_r=orr * (1 + 1e-4)))
+            ci_s, _ = _best(lambda: inputs(pose=sb.Pose(P0.d_Y + 1e-7, P0.d_Z, tilt=1e-6), o_r=orr * (1 + 1e-4)))
             r_s, t_step = _best(lambda: solve(ci_s, warm=base))
             row = {"grid": [nx, ns], "contact": c, "contact_elements": base.stats["contact_elements"],
                    "normal_force_N": base.normal_force, "adhesion_fraction": base.adhesion_fraction,

@@ -27,7 +27,7 @@ Typical use (one contact of a roller equilibrium; SI throughout)::
     b = SEED_000
     om, orr = nominal_speeds(b, OMEGA_INNER_SEED_000)                  # or the current Newton iterate
     ci = contact_input(b, Pose(d_Y, d_Z, tilt, skew), "inner", om, orr, OMEGA_INNER_SEED_000, 0.0,
-                       1.35 * a_H, 1.25 * b_H, 61, 121, s_centre=s_c, ring_shift=delta * b.e_z)
+                       1.35 * a_H, 1.25 * b_H, 61, 121, s_centre=s_c, inner_ring_shift=delta * b.e_z)
     res = solve_conformal(ci.grid.grid, ci.gap, constants, mu, np.stack([ci.slip.wx, ci.slip.ws]),
                           ci.speeds.reference, ci.speeds.kappa, s=ci.grid.s, warm=previous)   # cect.conformal
     R = resultants(res, ci.grid, ci.roller.centre)       # force (N) and moment about C (N m), in B
@@ -200,13 +200,14 @@ class ContactInput:
 
 def contact_input(b: BearingGeometry, pose: Pose, contact: str, omega_m: float, omega_R: float,
                   omega_inner: float, omega_outer: float, half_x: float, half_s: float, nx: int, ns: int,
-                  s_centre: float = 0.0, ring_shift=(0.0, 0.0, 0.0)) -> ContactInput:
+                  s_centre: float = 0.0, inner_ring_shift=(0.0, 0.0, 0.0)) -> ContactInput:
     """Grid, exact gap, rigid slip and rolling speeds of ``contact`` for roller ``pose``, cage speed omega_m and
     roller spin omega_R (rad/s, in B), ring speeds omega_I, omega_E (rad/s) and a ring displacement
-    ``ring_shift`` (m, 3-vector; the prescribed approach of the inner ring). Grid: nx x ns elements over
+    ``inner_ring_shift`` (m, 3-vector; the prescribed approach of the inner ring, spec §2.2: the outer ring is
+    fixed, so the shift acts on the inner contact only). Grid: nx x ns elements over
     x in +-half_x, s in s_centre +- half_s (m). V_ref = V(s_centre)."""
     roller = roller_body(b, pose)
-    ring = ring_body(b, contact, ring_shift)
+    ring = ring_body(b, contact, inner_ring_shift if contact == "inner" else (0.0, 0.0, 0.0))
     rate = ring_rate(contact, omega_m, omega_inner, omega_outer)
     dg = developed_grid(contact_surface(b, contact, ring, rate), half_x, half_s, nx, ns, s_centre)
     return ContactInput(dg, undeformed_distance(dg, roller, ring), rigid_slip(dg, roller, omega_R, ring, rate),
