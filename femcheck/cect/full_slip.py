@@ -101,3 +101,18 @@ def full_slip(a: float, b: float, normal_load: float, mu: float, xi: float, eta:
     return FullSlipResult(creep_force_x=fx, creep_force_y=fy, spin_moment=mz, adhesion_fraction=0.0,
                           x=x, y=y, px=px, py=py, pressure=pressure, weights=weights,
                           slip_direction_defined=defined, nx=nx, ny=ny)
+
+
+def full_slip_tractions(pressure: np.ndarray, wx: np.ndarray, wy: np.ndarray,
+                        mu: float) -> tuple[np.ndarray, np.ndarray]:
+    """Full slip on an arbitrary pressure field (seed 000 Table 2's full-slip columns; spec srb-rolling §4.4):
+    p_t = -mu p_n w / |w| element by element, with ``pressure`` p_n (Pa) and the rigid slip (``wx``, ``wy``)
+    (any unit; only its direction matters) on the same grid, e.g. the CECT pressure and rigid slip of a
+    converged roller equilibrium (:mod:`femcheck.cect.conformal`; resultants by
+    :func:`femcheck.cect.conformal.resultants` with ``tractions=``). The elastic slip is neglected; no
+    equilibrium is implied. Where w = 0 the traction is 0. Returns (px, py) (Pa)."""
+    mu = _check_positive("friction.mu", mu)
+    p = np.asarray(pressure, dtype=float)
+    speed = np.hypot(wx, wy)
+    inv = np.where(speed > 0, 1.0 / np.where(speed > 0, speed, 1.0), 0.0)
+    return -mu * p * wx * inv, -mu * p * wy * inv

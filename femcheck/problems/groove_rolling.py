@@ -1,0 +1,222 @@
+"""A crowned body of revolution rolling freely in a grooved ring or on a straight grooved rail (issue 11 item 3):
+the one-contact core of the spherical roller bearing of seed 000, with Coulomb friction.
+
+Geometry and frame: :mod:`femcheck.geometry.groove` (X rolling, Y along both axes, Z the nominal normal into the
+crowned body; ring_curvature > 0 convex ring, < 0 concave ring, 0 straight rail). The ring's surface speed V is
+given; free rolling: the body's rolling speed is the unknown that makes the rolling-direction force vanish.
+
+Models (:mod:`femcheck.cect.groove_contact`):
+- ``cect``: Kalker's exact theory on the conformal contact (:mod:`femcheck.cect.conformal`): exact gap between
+  the crown and the groove on the developed (x, s) grid along the groove, 3D rigid slip of the two bodies of
+  revolution (rolling radii varying across the patch), variable rolling step kappa(s), developed half-space (or
+  angle-corrected) influence coefficients. The reference.
+- ``planar``: today's planar exact theory (:mod:`femcheck.cect.exact`) with the Hertz quadratic gap and Kalker's
+  creepages at the nominal point: the contrast that shows what conformity changes. With parallel axes it has
+  neither spin nor a varying rolling radius, so it rolls freely at zero creepage with full adhesion and no
+  frictional power; its normal problem differs from the conformal one by the quadratic gap and the flat
+  contact plane only.
+- ``fem``: the frictional finite-element reference of issue 11 item 6 goes here, from
+  ``femcheck/fem/groove_rolling.py::model(scene, progress)`` (another branch): add "fem" to MODEL_NAMES, MODELS and
+  DEPENDS ({"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.", "numerics.fem_"),
+  "reference": True}) when it lands.
+
+Quantities (SI): ``approach`` (m), ``p_max`` (Pa), ``contact_half_length_s`` (m), ``angle_span`` (rad),
+``adhesion_fraction``, ``creepage_x`` (free-rolling longitudinal creepage w_x/V at the nominal point, Kalker's
+sign), ``spin_moment`` (N m, about the normal at the nominal point; zero by symmetry in this scene, reported as 0
+when below the solver's tolerance), ``friction_power`` (W), ``total_force`` (N, the pressure resultant along
+the nominal normal = load.normal).
+"""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from ..analytic.hertz import elliptic_contact
+from ..cect.groove_contact import GridSpec, solve_groove_cect, solve_groove_planar
+from ..cect.influence import combined_constants
+from ..cect.influence_conformal import INFLUENCE_OPTIONS
+from ..errors import InputError
+from ..geometry.groove import GrooveRolling
+from ..result import ModelResult
+from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
+
+MODEL_NAMES = ("cect", "planar")
+QUANTITIES = ("approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
+              "spin_moment", "friction_power")
+MAX_HALF_ANGLE = np.radians(30.0)     # contact half-angle on the groove beyond which the model is not applicable
+MAX_A_OVER_R = 0.1                    # longitudinal semi-axis / body rolling radius (half-space along x)
+MAX_B_OVER_CROWN = 0.8                # lateral semi-axis / half extent of the crown arc
+
+SCHEMA: dict[str, Key] = {
+    "geometry.rolling_radius": Key("float", "m", "nominal rolling radius r of the crowned body", lo=0.0),
+    "geometry.crown_radius": Key("float", "m", "lateral profile (crown) radius R of the crowned body", lo=0.0),
+    "geometry.groove_radius": Key("float", "m", "groove profile radius r_g of the ring (> crown radius)", lo=0.0),
+    "geometry.ring_curvature": Key("float", "1/m", "longitudinal curvature k of the grooved ring at the contact: > 0 "
+                                   "convex (like an inner raceway), < 0 concave (outer raceway), 0 straight rail"),
+    "load.normal": Key("float", "N", "normal load along the nominal contact normal", lo=0.0),
+    "friction.mu": Key("float", "-", "Coulomb friction coefficient", lo=0.0, hi=10.0, hi_closed=True),
+    **material_keys("body1"),
+    **material_keys("body2"),
+    "kinematics.speed": Key("float", "m/s", "rolling speed V (the ring's surface speed at the nominal point)",
+                            lo=0.0),
+    **model_keys(MODEL_NAMES),
+    "numerics.conformal_cells_x": Key("int", "-", "elements along the rolling direction (both models)", lo=9,
+                                      hi=401, lo_closed=True, hi_closed=True),
+    "numerics.conformal_cells_s": Key("int", "-", "elements across, along the groove (both models)", lo=9, hi=801,
+                                      lo_closed=True, hi_closed=True),
+    "numerics.conformal_domain_x": Key("float", "a_H", "grid half-length along x / Hertz semi-axis (enlarged "
+                                       "automatically when the contact reaches it)", lo=1.02, hi=3.0,
+                                       hi_closed=True),
+    "numerics.conformal_domain_s": Key("float", "b_H", "grid half-width along s / Hertz semi-axis (enlarged "
+                                       "automatically)", lo=1.02, hi=3.0, hi_closed=True),
+    "numerics.conformal_influence": Key("str", "-", "cect influence coefficients: halfspace (developed half-space), "
+                                        "blanco or rotated_response (angle-corrected, CONTACT variants 1 and 3)",
+                                        choices=INFLUENCE_OPTIONS),
+    "numerics.conformal_solver": Key("str", "-", "tangential solver: dense, fft or auto (fft above 300 contact "
+                                     "elements)", choices=("auto", "dense", "fft")),
+    "numerics.conformal_tol": Key("float", "-", "Coulomb residual / max(mu p)", lo=0.0, hi=1e-4, hi_closed=True),
+    "numerics.variable_dq": Key("bool", "-", "cect: variable rolling step kappa(s) = V(s)/V_ref (seed 000 eq 21)"),
+    "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
+                                    "references"),
+}
+DEFAULTS: dict[str, Any] = {
+    "materials.body1.rigid": False,
+    "materials.body2.rigid": False,
+    "models.run": ["cect", "planar"],
+    "models.references": ["cect"],
+    "models.contrast": ["planar"],
+    "numerics.conformal_cells_x": 41,
+    "numerics.conformal_cells_s": 81,
+    "numerics.conformal_domain_x": 1.35,
+    "numerics.conformal_domain_s": 1.25,
+    "numerics.conformal_influence": "halfspace",
+    "numerics.conformal_solver": "auto",
+    "numerics.conformal_tol": 1e-9,
+    "numerics.variable_dq": True,
+}
+REQUIRED = ("geometry.rolling_radius", "geometry.crown_radius", "geometry.groove_radius",
+            "geometry.ring_curvature", "load.normal", "friction.mu", "kinematics.speed")
+DEPENDS: dict[str, dict] = {}
+
+
+def geometry(params: dict[str, Any]) -> GrooveRolling:
+    return GrooveRolling(params["geometry.rolling_radius"], params["geometry.crown_radius"],
+                         params["geometry.groove_radius"], params["geometry.ring_curvature"])
+
+
+def _constants(params: dict[str, Any]):
+    return combined_constants(elastic(params, "body1"), elastic(params, "body2"))
+
+
+def validate(params: dict[str, Any]) -> None:
+    """Groove wider than the crown; a concave ring larger than the body; mu > 0; a load whose contact stays
+    within the model (half-angle on the groove <= 30 deg, a/r <= 0.1, b <= 0.8 of the crown's half extent)."""
+    check_body_pair(params, ("body1", "body2"))
+    R, rg, r = params["geometry.crown_radius"], params["geometry.groove_radius"], params["geometry.rolling_radius"]
+    if rg <= R:
+        raise InputError("geometry.groove_radius", f"{rg:g} m is not allowed; allowed: ({R:g}, inf) m (larger than "
+                         "geometry.crown_radius: a groove conforming to the crown)")
+    k = params["geometry.ring_curvature"]
+    if k <= -1.0 / r:
+        raise InputError("geometry.ring_curvature", f"{k:g} 1/m is not allowed; allowed: ({-1.0 / r:.6g}, inf) 1/m "
+                         "(a concave ring must be larger than the body it carries)")
+    if params["friction.mu"] <= 0:
+        raise InputError("friction.mu", f"{params['friction.mu']:g} is not allowed; allowed: (0, 10]")
+    g = geometry(params)
+    rx, ry = g.hertz_radii
+    N = params["load.normal"]
+    h = elliptic_contact(N, rx, ry, _constants(params).contact_modulus)
+    # Hertz sizes scale as N^(1/3): the largest load each limit allows
+    ratios = {"contact half-angle on the groove / 30 deg": h.semi_axis_y / rg / MAX_HALF_ANGLE,
+              f"a / rolling radius / {MAX_A_OVER_R}": h.semi_axis_x / r / MAX_A_OVER_R,
+              f"b / crown half extent / {MAX_B_OVER_CROWN}": h.semi_axis_y / g.crown_half_extent / MAX_B_OVER_CROWN}
+    worst = max(ratios, key=ratios.get)
+    if ratios[worst] > 1.0:
+        raise InputError("load.normal", f"{N:g} N cannot be carried by this contact model ({worst} = "
+                         f"{ratios[worst]:.3g}); allowed: (0, {N / ratios[worst] ** 3:.4g}] N for this geometry")
+
+
+def _spec(p: dict[str, Any]) -> GridSpec:
+    return GridSpec(p["numerics.conformal_cells_x"], p["numerics.conformal_cells_s"], p["numerics.conformal_domain_x"],
+                    p["numerics.conformal_domain_s"])
+
+
+def _quantities(q: dict[str, float]) -> dict[str, float]:
+    out = {k: float(q[k]) for k in ("approach", "p_max", "angle_span", "adhesion_fraction", "creepage_x",
+                                    "spin_moment", "friction_power", "total_force")}
+    out["contact_half_length_s"] = float(q["half_length_s"])
+    return out
+
+
+def cect(scene: Scene, progress=None) -> ModelResult:
+    """Free rolling by the conformal exact theory (reference)."""
+    p = scene.params
+    if progress:
+        progress("cect: conformal exact theory, free rolling")
+    # E8: the rolling speeds of the two bodies weighted by their compliances (1 - nu^2)/E (0 when rigid)
+    weights = tuple(0.0 if p[f"materials.{b}.rigid"] else (1.0 - p[f"materials.{b}.nu"] ** 2) / p[f"materials.{b}.E"]
+                    for b in ("body1", "body2"))
+    sol = solve_groove_cect(geometry(p), p["load.normal"], p["friction.mu"], _constants(p), p["kinematics.speed"],
+                            _spec(p), p["numerics.conformal_influence"], p["numerics.variable_dq"],
+                            p["numerics.conformal_solver"], p["numerics.conformal_tol"], weights)
+    r, dg = sol.result, sol.grid
+    stats = {**sol.stats, "n_elements": r.grid.nx * r.grid.ny,
+             "solver": "conformal CECT: semi-smooth Newton ("
+                       + ("matrix-free FGMRES" if sol.stats["tangential_solver"] == "fft" else "dense LU")
+                       + ") + Polonsky-Keer CG, secant on the body speed"}
+    fields = {"map_x": dg.x, "map_y": dg.s, "pressure_map": r.pressure, "adhesion_map": r.adhesion.astype(float),
+              "px_map": r.px, "py_map": r.ps, "slip_x_map": r.slip_x, "slip_y_map": r.slip_s,
+              "power_density_map": r.power_density, "s": dg.s, "lateral_normal": r.lateral_normal,
+              "lateral_fx": r.lateral_fx, "lateral_fs": r.lateral_fs, "kappa": r.kappa}
+    return ModelResult("cect", quantities=_quantities(sol.quantities), stats=stats, fields=fields)
+
+
+def planar(scene: Scene, progress=None) -> ModelResult:
+    """Free rolling by the planar exact theory with the Hertz quadratic gap (contrast)."""
+    p = scene.params
+    if progress:
+        progress("planar: planar exact theory, free rolling")
+    sol = solve_groove_planar(geometry(p), p["load.normal"], p["friction.mu"], _constants(p), p["kinematics.speed"],
+                              _spec(p), p["numerics.conformal_solver"], p["numerics.conformal_tol"])
+    r = sol.result
+    g = r.grid
+    fields = {"map_x": g.x, "map_y": g.y, "pressure_map": r.pressure, "adhesion_map": r.adhesion.astype(float),
+              "s": g.y, "lateral_normal": r.pressure.sum(axis=0) * g.dx, "lateral_fx": r.px.sum(axis=0) * g.dx}
+    stats = {**sol.stats, "n_elements": g.nx * g.ny,
+             "solver": "planar exact theory: semi-smooth Newton + Polonsky-Keer CG, secant on the creepage"}
+    return ModelResult("planar", quantities=_quantities(sol.quantities), stats=stats, fields=fields)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "planar": planar}
+
+
+def load_of(scene: Scene) -> float:
+    return scene["load.normal"]
+
+
+def profile_scale(scene: Scene) -> float:
+    p = scene.params
+    rx, ry = geometry(p).hertz_radii
+    return elliptic_contact(p["load.normal"], rx, ry, _constants(p).contact_modulus).semi_axis_x
+
+
+def stress_cases(scene: Scene) -> list:
+    """Conformity from 1.002 to 1.05 (groove / crown radius), straight rail and concave ring, friction 0.01-1,
+    loads down to 1e-3 of the scene's."""
+    from ..result import StressCase
+
+    p = scene.params
+    R = p["geometry.crown_radius"]
+    cases = [StressCase(f"groove/crown={q:g}", {"geometry.groove_radius": R * q}) for q in (1.002, 1.005, 1.01, 1.05)]
+    cases.append(StressCase("straight rail", {"geometry.ring_curvature": 0.0}))
+    cases.append(StressCase("concave ring", {"geometry.ring_curvature": -0.8 / p["geometry.rolling_radius"]}))
+    cases += [StressCase(f"mu={mu:g}", {"friction.mu": mu}) for mu in (0.01, 1.0)]
+    cases += [StressCase(f"load x {f:g}", {"load.normal": p["load.normal"] * f}) for f in (1e-3, 0.1)]
+    return cases
+
+
+def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
+    """Grid refinement of the conformal solver (cells along x, across: 1:2)."""
+    return {"cect": [{"numerics.conformal_cells_x": n, "numerics.conformal_cells_s": 2 * n - 1}
+                     for n in (21, 31, 41, 61, 81)]}
