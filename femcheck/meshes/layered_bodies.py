@@ -43,7 +43,8 @@ from .srb_segments import BodyMesh, _cached
 class SectionSpec:
     """2D cross-section in the (a, c) plane: ``shape`` "half_disk" (radius ``size_a``; a >= 0) or "rectangle"
     ([0, size_a] x [-size_c, 0]); element size ``h_contact`` at the points ``fine`` ((a, c) pairs), growing by
-    ``grading`` per unit distance up to ``h_max``."""
+    ``grading`` per unit distance up to ``h_max``; ``align``: abscissae a of extra boundary nodes on the contact
+    edge(s) (the influence cells' edges a = dx/2), so that element faces follow the cell boundaries."""
 
     shape: str
     size_a: float
@@ -52,6 +53,7 @@ class SectionSpec:
     h_contact: float
     grading: float
     h_max: float
+    align: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -81,15 +83,22 @@ def _layered(spec: LayeredSpec) -> tuple[np.ndarray, np.ndarray]:
     b0 = float(lay[0])
     with _Gmsh("layered_body") as model:
         geo = model.geo
+        al = sorted(a for a in sec.align if 0.0 < a < 0.5 * sec.size_a)
         if sec.shape == "half_disk":
             r = sec.size_a
-            c, p0, p1, p2 = (geo.addPoint(0.0, b0, 0.0), geo.addPoint(0.0, b0, -r), geo.addPoint(r, b0, 0.0),
-                             geo.addPoint(0.0, b0, r))
-            curves = [geo.addCircleArc(p0, c, p1), geo.addCircleArc(p1, c, p2), geo.addLine(p2, p0)]
+            c = geo.addPoint(0.0, b0, 0.0)
+            # boundary from (0, -r) over (r, 0) to (0, r), through the alignment points near both poles
+            angles = ([-0.5 * np.pi] + [-np.arccos(a / r) for a in al] + [0.0]
+                      + [np.arccos(a / r) for a in al[::-1]] + [0.5 * np.pi])
+            pts = [geo.addPoint(r * np.cos(t), b0, r * np.sin(t))
+                   for t in angles]
+            curves = [geo.addCircleArc(pts[i], c, pts[i + 1]) for i in range(len(pts) - 1)]
+            curves.append(geo.addLine(pts[-1], pts[0]))
         elif sec.shape == "rectangle":
             A, C = sec.size_a, sec.size_c
-            pts = [geo.addPoint(x, b0, z) for x, z in ((0.0, 0.0), (A, 0.0), (A, -C), (0.0, -C))]
-            curves = [geo.addLine(pts[i], pts[(i + 1) % 4]) for i in range(4)]
+            top = [(0.0, 0.0)] + [(a, 0.0) for a in al] + [(A, 0.0), (A, -C), (0.0, -C)]
+            pts = [geo.addPoint(x, b0, z) for x, z in top]
+            curves = [geo.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))]
         else:
             raise ValueError(f"unknown section shape {sec.shape!r}")
         face = geo.addPlaneSurface([geo.addCurveLoop(curves)])
@@ -146,6 +155,7 @@ class CrownedSpec:
     h_contact: float
     grading: float
     h_max: float
+    align: tuple[float, ...] = ()
 
 
 def crown_rho(y, rolling_radius: float, crown_radius: float):
@@ -153,18 +163,28 @@ def crown_rho(y, rolling_radius: float, crown_radius: float):
     return rolling_radius - crown_radius + np.sqrt(crown_radius**2 - np.asarray(y, dtype=float) ** 2)
 
 
+def _crown_map(a, c, k, r):
+    """Section point (a, c) of the disk of radius r -> (X, Z) on the disk of radius k r, keeping X = a near the
+    contact generatrices (a << r: X = a (1 + (k - 1)(a/r)^2)) so that the influence cells' edges stay on element
+    faces, with the circle mapped onto the circle: Z = c sqrt((k r)^2 - X^2) / sqrt(r^2 - a^2)."""
+    X = a * (1.0 + (k - 1.0) * (a / r) ** 2)
+    den = np.sqrt(np.maximum(r * r - a * a, 0.0))
+    xi = np.where(den > 0, c / np.where(den > 0, den, 1.0), 0.0)
+    Z = np.clip(xi, -1.0, 1.0) * np.sqrt(np.maximum((k * r) ** 2 - X * X, 0.0))
+    return X, Z
+
+
 def _crowned(spec: CrownedSpec) -> BodyMesh:
     r, R = spec.rolling_radius, spec.crown_radius
     if not crown_rho(spec.half_length, r, R) > 0:
         raise ValueError("the crown arc reaches the axis before the body's end")
     sec = SectionSpec("half_disk", r, r, tuple((0.0, float(z) * r) for z in spec.zones), spec.h_contact,
-                      spec.grading, spec.h_max)
+                      spec.grading, spec.h_max, spec.align)
     P, tets = _layered(LayeredSpec(sec, spec.layers))
     a, y, c = P
     tiny = 1e-9 * r
     on_arc = np.abs(np.hypot(a, c) - r) < 1e-7 * r
-    scale = crown_rho(y, r, R) / r
-    X = np.stack([a * scale, y, c * scale])
+    X = np.stack([*_crown_map(a, c, crown_rho(y, r, R) / r, r), y])[[0, 2, 1]]
     faces = {"x0": np.flatnonzero(a < tiny), "ends": np.flatnonzero((y < spec.layers[0] + tiny)
                                                                     | (y > spec.layers[-1] - tiny))}
     return _body(X, tets, np.flatnonzero(on_arc), faces)
@@ -196,6 +216,7 @@ class RingSpec:
     h_contact: float
     grading: float
     h_max: float
+    align: tuple[float, ...] = ()
 
 
 def _rotate(P: np.ndarray, point: np.ndarray, axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -210,7 +231,7 @@ def _ring(spec: RingSpec) -> BodyMesh:
     G, m0, tau0 = (np.asarray(v, dtype=float) for v in (spec.centre, spec.m0, spec.tau0))
     rg = spec.groove_radius
     sec = SectionSpec("rectangle", spec.length_x, spec.depth, ((0.0, 0.0),), spec.h_contact, spec.grading,
-                      spec.h_max)
+                      spec.h_max, spec.align)
     P, tets = _layered(LayeredSpec(sec, spec.layers))
     a, s, c = P
     d = -c
@@ -223,9 +244,12 @@ def _ring(spec: RingSpec) -> BodyMesh:
         O, e = np.asarray(spec.axis_point, dtype=float), np.asarray(spec.axis_dir, dtype=float)
         e = e / np.linalg.norm(e)
         Q = G + rg * m0
-        rho = np.linalg.norm((Q - O) - ((Q - O) @ e) * e)
         sign = 1.0 if np.cross(e, Q - O) @ ex > 0 else -1.0     # the rotation sense that moves Q along +x
-        X = _rotate(X, O, e, sign * a / rho)
+        # each point turns about the ring axis by asin(a / rho): its x coordinate is then exactly a, so the planes
+        # a = const (the influence cells' edges, the end face) stay planes x = const
+        rel = X - O[:, None]
+        rho = np.linalg.norm(rel - e[:, None] * (e[:, None] * rel).sum(axis=0), axis=0)
+        X = _rotate(X, O, e, sign * np.arcsin(np.clip(a / rho, -1.0, 1.0)))
     tiny = 1e-9 * spec.length_x
     faces = {"x0": np.flatnonzero(a < tiny), "xend": np.flatnonzero(a > spec.length_x - tiny),
              "bottom": np.flatnonzero(d > spec.depth - tiny)}
@@ -248,11 +272,12 @@ class BlockSpec:
     h_contact: float
     grading: float
     h_max: float
+    align: tuple[float, ...] = ()
 
 
 def _block(spec: BlockSpec) -> BodyMesh:
     sec = SectionSpec("rectangle", spec.length_x, spec.depth, ((0.0, 0.0),), spec.h_contact, spec.grading,
-                      spec.h_max)
+                      spec.h_max, spec.align)
     P, tets = _layered(LayeredSpec(sec, spec.layers))
     tiny = 1e-9 * spec.length_x
     faces = {"x0": np.flatnonzero(P[0] < tiny), "xend": np.flatnonzero(P[0] > spec.length_x - tiny),
