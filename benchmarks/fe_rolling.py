@@ -45,7 +45,10 @@ def srb_level(level: int, mu: float = 0.3, ratio: float = 2**0.5) -> dict:
     roller = Crowned(np.zeros(3), np.array([0, 1.0, 0]), geo["r"], geo["R"])
     # nominal speeds (seed 000 eqs 2-3) in the bearing frame rotating with the cage: ring j turns at
     # omega_j - omega_m about the bearing axis, the roller at omega_R about its axis
-    rI, rE, D = SRB["geometry.groove_radius_inner"], SRB["geometry.groove_radius_outer"], SRB["geometry.roller_diameter"]
+    # eqs 2-3 with the rolling radii r_roll,I/E = r_m -/+ (D/2) cos(alpha) (spec §1.2: 22.2652, -225.675 rad/s)
+    D, al = SRB["geometry.roller_diameter"], SRB["geometry.contact_angle"]
+    r_m = (SRB["geometry.groove_radius_outer"] - 0.5 * D) * np.cos(al)
+    rI, rE = r_m - 0.5 * D * np.cos(al), r_m + 0.5 * D * np.cos(al)
     wI, wE = 476.2 * 2 * np.pi / 60, 0.0
     wm = (rI * wI + rE * wE) / (rI + rE)
     wR = -2 * rI * rE * (wI - wE) / (D * (rI + rE))

@@ -81,9 +81,10 @@ def roller_mesh(roller: RollerBody, grids: dict[str, ContactGrid], mesh: MeshSet
 
 
 def _merge(values: np.ndarray, ds: float) -> np.ndarray:
-    """Sorted values with near-duplicates (closer than ds/4) merged: the cell edges of several grids."""
+    """Sorted values with duplicates (closer than 1e-3 ds) merged: the cell edges of several grids (all kept, so
+    that element faces follow every grid's cells; grids with a common ds give a single set)."""
     v = np.sort(values)
-    keep = np.concatenate([[True], np.diff(v) > 0.25 * ds])
+    keep = np.concatenate([[True], np.diff(v) > 1e-3 * ds])
     return v[keep]
 
 
