@@ -1,0 +1,231 @@
+"""FE reference (``fem``) of the groove-rolling scene: a crowned body of revolution rolling freely in a grooved
+ring (or on a grooved straight rail) with Coulomb friction, one conformal contact (issue 11 items 3 and 6).
+
+Geometry (FE roller frame, m): crowned body about the y axis through the origin, rolling radius r0 at its crown
+apex, crown radius R_c; the ring touches it at (0, 0, -r0); the groove circle (radius r_g > R_c) has its centre
+at (0, 0, r_g - r0); the ring's longitudinal curvature kappa (``geometry.ring_curvature``, 1/m) puts the ring
+axis (parallel to y) at (0, 0, -r0 - 1/kappa): kappa > 0 convex along x (an inner ring), < 0 concave (an outer
+ring, |1/kappa| > 2 r0), 0 a straight rail. Relative radii at the nominal point: 1/Rx = 1/r0 + kappa,
+1/Ry = 1/R_c - 1/r_g; ``load.normal`` N along the nominal normal +z (load control: the approach is an unknown).
+
+Kinematics: the contact is stationary, the ring's surface moves at -V e_x at the reference point
+(``kinematics.speed`` V), the crowned body turns at omega = (V/r0)(1 + theta) about +y; free rolling: theta is the
+unknown that makes the longitudinal force zero (:func:`femcheck.fem.rolling_contact.creepage_unknown` with the
+exact slip derivative). The rigid slip, V_ref and kappa(s) come from :mod:`femcheck.fem.rolling_geometry`.
+
+FE model: whole crowned body (length ``numerics.fem_body_length`` x b_H, free: inertia relief, mean axes) and a
+ring segment (clamped bottom and far end), P2 layered meshes aligned with the influence cells
+(:mod:`femcheck.fem.rolling_compliance`), steady rolling solved on the condensed tables by the FE side's
+semi-smooth Newton (:mod:`femcheck.solvers.coulomb3d`). Levels refine grid and mesh together (cells and the
+section's element size by ``numerics.fem_ratio``); certificates by :func:`femcheck.solvers.convergence.certify`.
+
+Quantities (SI): ``approach`` (m), ``p_max`` (Pa, largest cell pressure), ``contact_half_length_s`` (m, from a
+parabola fitted to the lateral load distribution N*(s) = sum_x p dx), ``angle_span`` (rad, 2 half-length / r_g),
+``adhesion_fraction`` (adhesion cells / contact cells), ``creepage_x`` (free-rolling longitudinal creepage
+w_x / V_ref at the reference point), ``spin_moment`` (N m, about the nominal normal through the reference point),
+``friction_power`` (W).
+"""
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+
+from ..analytic import hertz
+from ..errors import InputError
+from ..materials import Elastic, effective_modulus
+from ..result import ModelResult
+from ..scene import Key
+from ..solvers.convergence import certify
+from .contact_grid import ContactGrid, ContactInput, centred_cells
+from .rolling_compliance import MeshSettings, RingBody, RollerBody, fe_compliance
+from .rolling_contact import approach_unknown, creepage_unknown, solve_rolling
+from .rolling_geometry import Crowned, Grooved, gap, kinematics
+
+QUANTITIES = ("approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
+              "spin_moment", "friction_power")
+
+FEM_SCHEMA: dict[str, Key] = {
+    "numerics.fem_levels": Key("int", "-", "FE levels (grid and mesh refined together)", lo=1, hi=4,
+                               lo_closed=True, hi_closed=True),
+    "numerics.fem_nx": Key("int", "-", "cells along x on the coarsest level", lo=5, hi=61, lo_closed=True,
+                           hi_closed=True),
+    "numerics.fem_ns": Key("int", "-", "cells along s on the coarsest level", lo=5, hi=121, lo_closed=True,
+                           hi_closed=True),
+    "numerics.fem_ratio": Key("float", "-", "refinement ratio between levels", lo=1.1, hi=2.0, lo_closed=True,
+                              hi_closed=True),
+    "numerics.fem_half_x": Key("float", "a_H", "grid half-width along x", lo=1.1, hi=3.0, lo_closed=True,
+                               hi_closed=True),
+    "numerics.fem_half_s": Key("float", "b_H", "grid half-width along s", lo=1.05, hi=2.0, lo_closed=True,
+                               hi_closed=True),
+    "numerics.fem_h_contact": Key("float", "dx", "section element size at the contact line", lo=0.2, hi=2.0,
+                                  lo_closed=True, hi_closed=True),
+    "numerics.fem_grading": Key("float", "-", "section element growth per unit distance (coarsest level)",
+                                lo=0.05, hi=1.0, lo_closed=True, hi_closed=True),
+    "numerics.fem_body_length": Key("float", "b_H", "length of the crowned body", lo=2.2, hi=20.0,
+                                    lo_closed=True, hi_closed=True),
+    "numerics.fem_ring_length": Key("float", "b_H", "ring segment half-length along x", lo=0.1, hi=5.0,
+                                    lo_closed=True, hi_closed=True),
+    "numerics.fem_ring_depth": Key("float", "b_H", "ring material below the groove", lo=0.1, hi=5.0,
+                                   lo_closed=True, hi_closed=True),
+    "numerics.fem_ring_width": Key("float", "b_H", "ring segment half-extent along the groove", lo=1.1, hi=5.0,
+                                   lo_closed=True, hi_closed=True),
+    "numerics.fem_tol": Key("float", "-", "residual tolerance of the frictional semi-smooth Newton", lo=0.0,
+                            hi=1e-3, hi_closed=True),
+}
+FEM_DEFAULTS: dict[str, Any] = {
+    "numerics.fem_levels": 3,
+    "numerics.fem_nx": 11,
+    "numerics.fem_ns": 21,
+    "numerics.fem_ratio": 1.4142135623730951,
+    "numerics.fem_half_x": 1.35,
+    "numerics.fem_half_s": 1.25,
+    "numerics.fem_h_contact": 0.7,
+    "numerics.fem_grading": 0.4,
+    "numerics.fem_body_length": 3.0,
+    "numerics.fem_ring_length": 0.5,
+    "numerics.fem_ring_depth": 1.0,
+    "numerics.fem_ring_width": 1.5,
+    "numerics.fem_tol": 1e-9,
+}
+
+
+def _params(scene) -> dict[str, Any]:
+    p = dict(getattr(scene, "params", scene))
+    return {**FEM_DEFAULTS, **p}
+
+
+def _odd(n: float) -> int:
+    k = int(round(n))
+    return k if k % 2 else k + 1
+
+
+def setup(p: dict[str, Any]) -> dict[str, Any]:
+    """Bodies, Hertz estimate and frames from the scene keys (see the module docstring); raises InputError."""
+    r0, Rc = float(p["geometry.rolling_radius"]), float(p["geometry.crown_radius"])
+    rg, kap = float(p["geometry.groove_radius"]), float(p["geometry.ring_curvature"])
+    if not rg > Rc:
+        raise InputError("geometry.groove_radius", f"{rg:g} m must exceed the crown radius {Rc:g} m; "
+                         f"allowed: ({Rc:g}, inf) m")
+    if kap < 0 and not 1.0 / -kap > 2.0 * r0:
+        raise InputError("geometry.ring_curvature", f"{kap:g} 1/m: a concave ring must enclose the body; "
+                         f"allowed: > {-1.0 / (2.0 * r0):g} 1/m")
+    if float(p["friction.mu"]) <= 0:
+        raise InputError("friction.mu", f"{p['friction.mu']:g}; allowed: (0, 10]")
+    m1 = Elastic(float(p["materials.body1.E"]), float(p["materials.body1.nu"]))
+    m2 = Elastic(float(p["materials.body2.E"]), float(p["materials.body2.nu"]))
+    Rx = 1.0 / (1.0 / r0 + kap)
+    Ry = 1.0 / (1.0 / Rc - 1.0 / rg)
+    hz = hertz.elliptic_contact(float(p["load.normal"]), Rx, Ry, effective_modulus(m1, m2))
+    return {"r0": r0, "Rc": Rc, "rg": rg, "kappa": kap, "m1": m1, "m2": m2, "hertz": hz, "Rx": Rx, "Ry": Ry}
+
+
+def _grid(g: dict, p: dict, nx: int, ns: int) -> ContactGrid:
+    a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
+    G = np.array([0.0, 0.0, g["rg"] - g["r0"]])
+    return ContactGrid(G, g["rg"], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0],
+                       centred_cells(p["numerics.fem_half_x"] * a, nx), centred_cells(p["numerics.fem_half_s"] * b, ns),
+                       "groove")
+
+
+def _lateral_half_length(s: np.ndarray, load: np.ndarray) -> tuple[float, float]:
+    """(half-length, centre) of the lateral load distribution N*(s): least-squares parabola c0 + c1 s + c2 s^2
+    over the cells with N* > 0.25 max (a Hertzian N*(s) is exactly parabolic), roots of the parabola."""
+    m = load > 0.25 * load.max()
+    c2, c1, c0 = np.polyfit(s[m], load[m], 2)
+    if c2 >= 0:
+        return float(0.5 * (s[m].max() - s[m].min())), float(s[m].mean())
+    centre = -c1 / (2 * c2)
+    disc = c1 * c1 - 4 * c2 * c0
+    return float(np.sqrt(max(disc, 0.0)) / (2 * abs(c2))), float(centre)
+
+
+def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
+    """One level: compliance, free rolling under load control; returns quantities, stats and fields."""
+    g = setup(p)
+    f = p["numerics.fem_ratio"] ** level
+    nx, ns = _odd(p["numerics.fem_nx"] * f), _odd(p["numerics.fem_ns"] * f)
+    grid = _grid(g, p, nx, ns)
+    a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
+    r0, rg, kap = g["r0"], g["rg"], g["kappa"]
+    roller = RollerBody(r0, g["Rc"], p["numerics.fem_body_length"] * b, g["m1"])
+    G = tuple(float(v) for v in grid.centre)
+    axis_point = None if kap == 0 else (0.0, 0.0, -r0 - 1.0 / kap)
+    axis_dir = None if kap == 0 else (0.0, 1.0, 0.0)
+    ring = RingBody(G, rg, axis_point, axis_dir, g["m2"], p["numerics.fem_ring_length"] * b,
+                    p["numerics.fem_ring_depth"] * b, p["numerics.fem_ring_width"] * b)
+    mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, max(b, 2 * a), 1, 2)
+    t0 = time.perf_counter()
+    comp = fe_compliance(roller, {"groove": ring}, {"groove": grid}, mesh, progress=progress)
+    t_comp = time.perf_counter() - t0
+    V = float(p["kinematics.speed"])
+    body = Crowned(np.zeros(3), np.array([0.0, 1.0, 0.0]), r0, g["Rc"])
+    if kap == 0:
+        groove = Grooved(np.asarray(G), rg, rail_direction=np.array([1.0, 0.0, 0.0]))
+        rate = -V
+    else:
+        groove = Grooved(np.asarray(G), rg, np.asarray(axis_point), np.asarray(axis_dir))
+        rate = -V * kap                        # ring surface at the reference point moves at -V e_x
+    kin = kinematics(grid, body, V / r0, groove, rate)
+    kin_w = kinematics(grid, body, 0.0, groove, rate)
+    dslip = (kin.slip - kin_w.slip) / kin.speed                    # d(w/V_ref)/dtheta with omega = V/r0 (1 + theta)
+    h = gap(grid, body, groove)
+    inp = ContactInput(grid, h, kin.slip, kin.speed, kin.kappa)
+    extras = [approach_unknown("approach", "groove", grid, [0.0, 0.0, 1.0], float(p["load.normal"]),
+                               g["hertz"].approach),
+              creepage_unknown("theta", "groove", grid, dslip, 0.0)]
+    t1 = time.perf_counter()
+    sol = solve_rolling(comp, {"groove": inp}, float(p["friction.mu"]), extras, tol=p["numerics.fem_tol"])
+    t_solve = time.perf_counter() - t1
+    r = sol.contacts["groove"]
+    half, centre = _lateral_half_length(grid.s, r.lateral_normal)
+    theta = sol.theta["theta"]
+    Pref = grid.point(0.0, 0.0)
+    w_ref = (body.velocity(Pref, V / r0 * (1.0 + theta)) - groove.velocity(Pref, rate)) @ grid.ex
+    q = {"approach": sol.theta["approach"], "p_max": r.p_max, "contact_half_length_s": half,
+         "angle_span": 2.0 * half / rg, "adhesion_fraction": r.adhesion_fraction,
+         "creepage_x": float(w_ref / kin.speed), "spin_moment": r.spin_moment, "friction_power": r.friction_power}
+    stats = {"level": level, "nx": nx, "ns": ns, "dx": grid.dx, "ds": grid.ds, "h": grid.dx,
+             "n_dofs": comp.stats["n_dofs"], "iterations": sol.iterations, "residual": sol.residual,
+             "time_compliance_s": t_comp, "time_solve_s": t_solve, "pressure_centre_s": centre,
+             "normal_force": r.normal_force, "creep_force_x": r.creep_force_x, "creep_force_s": r.creep_force_s,
+             "bodies": {k: {kk: v[kk] for kk in ("n_nodes", "n_dofs", "times", "factorisations")}
+                        for k, v in comp.stats.items() if isinstance(v, dict) and "n_dofs" in v}, **q}
+    fields = {"x": grid.x, "s": grid.s, "pressure": r.pressure, "px": r.px, "ps": r.ps,
+              "adhesion": r.adhesion.astype(float), "contact": r.contact.astype(float),
+              "slip_x": r.slip_velocity[0], "slip_s": r.slip_velocity[1], "power_density": r.power_density,
+              "lateral_normal": r.lateral_normal, "lateral_longitudinal": r.lateral_longitudinal}
+    return {"quantities": q, "stats": stats, "fields": fields}
+
+
+def model(scene, progress=None) -> ModelResult:
+    """The ``fem`` model of the groove-rolling scene (module docstring); ``scene`` a Scene or a params dict."""
+    t0 = time.perf_counter()
+    p = _params(scene)
+    n_levels = int(p["numerics.fem_levels"])
+    levels = []
+    for k in range(n_levels):
+        if progress:
+            progress(f"FE groove rolling, level {k + 1}/{n_levels}")
+        levels.append(solve_level(p, k, progress))
+    fine = levels[-1]
+    h = [lv["stats"]["h"] for lv in levels]
+    certificates = {}
+    q = dict(fine["quantities"])
+    for name in QUANTITIES:
+        vals = [lv["quantities"][name] for lv in levels]
+        if len(vals) >= 3:
+            c = certify(h, vals, singular=(name == "p_max"))
+        else:
+            c = certify(h, vals)
+        certificates[name] = c.as_dict()
+        q[name] = c.value
+    stats = {"method": "FE compliances (P2 layered meshes, unit cell loads, Pardiso) + semi-smooth Newton "
+                       "steady rolling (free rolling, load control)",
+             "levels": [lv["stats"] for lv in levels], "level_quantities": list(QUANTITIES),
+             "certificates": certificates, "iterations": fine["stats"]["iterations"],
+             "residual": fine["stats"]["residual"], "finest": dict(fine["quantities"]),
+             "hertz": {"semi_axis_x": setup(p)["hertz"].semi_axis_x, "semi_axis_y": setup(p)["hertz"].semi_axis_y,
+                       "p_max": setup(p)["hertz"].p_max, "approach": setup(p)["hertz"].approach}}
+    return ModelResult("fem", time_s=time.perf_counter() - t0, quantities=q, stats=stats, fields=fine["fields"])
