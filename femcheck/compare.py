@@ -37,7 +37,8 @@ def _scalar(model: str, q: dict[str, float], ref: str, qr: dict[str, float], sce
     out = []
     for name in q:
         if name in qr and qr[name] != 0:
-            rel = abs(q[name] - qr[name]) / abs(qr[name])
+            a, b = q[name], qr[name]      # equal infinite values (an infinite life) agree; one infinite does not
+            rel = 0.0 if a == b else abs(a - b) / abs(b) if np.isfinite(a) and np.isfinite(b) else np.inf
             out.append(_judge(name, model, ref, q[name], qr[name], rel, scene))
     return out
 
