@@ -136,3 +136,17 @@ def test_load_life_exponents_through_the_scenes():
                               models=[model]).models[model].quantities["fatigue_life"] for W in loads]
         # the line BEM's gap is the exact circle, not Hertz's parabola: self-similar only to O((a/R)^2) ~ 1e-3
         assert local_exponents(loads, lives) == pytest.approx([4.0], rel=1e-6 if model == "analytic" else 1e-3), model
+
+
+def test_an_infinite_life_survives_the_cache_and_the_references(tmp_path, monkeypatch):
+    from femcheck import cache, references
+    from femcheck.result import ModelResult
+
+    res = ModelResult("bem_transient", quantities={"fatigue_life": math.inf, "risk_integral": 0.0},
+                      stats={"life": {"infinite_life": True}})
+    cache.store("lifekey", res)
+    assert cache.load("lifekey").quantities["fatigue_life"] == math.inf
+    monkeypatch.setenv("FEMCHECK_REFERENCES", str(tmp_path))
+    references.store("indent_contact", "bem_transient", "lifekey", res, "indent-life", {})
+    back = references.load("indent_contact", "bem_transient", "lifekey")
+    assert back is not None and back.quantities["fatigue_life"] == math.inf

@@ -58,7 +58,11 @@ DEFAULTS: dict[str, Any] = {
     "numerics.bem_tol": 1e-10,
 }
 REQUIRED = ("geometry.radius", "load.normal", "indent.diameter", "indent.slope", "indent.decay")
-DEPENDS: dict[str, dict] = {}
+# the full transient (a BEM solve per indent position, minutes at 129^2) is cached and stored like an FE reference
+DEPENDS: dict[str, dict] = {
+    "bem_transient": {"params": ("geometry.", "load.", "materials.", "indent.", "life.", "outputs.life",
+                                 "numerics.bem_", "numerics.life_"), "reference": True},
+}
 
 
 def _hertz(params: dict[str, Any]) -> hertz.EllipticContact:
