@@ -144,6 +144,11 @@ def test_pressure_map_and_window_are_checked(indent_case):
     with pytest.raises(InputError) as err:
         sh.smooth_history(c["smooth"], NU, c["z"], c["wz"], -1.0)
     assert err.value.key == "life.window"
+    # a pressure that does not vanish where the stress grid extends it with zeros is refused
+    cut = sh.PressureMap(c["smooth"].x[20:45], c["smooth"].y, c["smooth"].pressure[20:45])
+    with pytest.raises(InputError) as err:
+        sh.smooth_history(cut, NU, c["z"], c["wz"], 2 * c["a"])
+    assert err.value.key == "pressure" and "edge" in str(err.value)
     with pytest.raises(InputError) as err:
         sh.pseudo_transient_history(c["smooth"], c["dented"], c["centre"], NU, c["z"], c["wz"], 2 * c["a"], c["a"],
                                     "quadratic")

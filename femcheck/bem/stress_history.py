@@ -16,23 +16,36 @@ Dented contact, pseudo-transient (eq 4.5): with sigma_S the smooth field and sig
 pressure dP = p_dented - p_smooth of the indent at its *centred* position (x_D0, y_D), a material point at
 xi = x - x_D from the indent (it moves with the surface in pure rolling) sees, when the indent is at x_D,
 
-    sigma(xi, y, z; x_D) = sigma_S(xi + x_D, y, z) + chi(x_D) sigma_D(xi + x_D0, y, z)
+    sigma(xi, y, z; x_D) = sigma_S(xi + x_D, y, z) + chi(x_D) sigma_D(xi + x_D0, y, z)   (+ contact correction)
     T(xi, y, z) = max over x_D of sigma_VM[sigma(xi, y, z; x_D)]
 
-chi (the thesis leaves it open: "sigma_D has no meaning when the indent is out of the contact"): chi = 1 while the
-indent centre is inside the contact, |x_D| <= X_chi, 0 otherwise. X_chi = the contact's half-length at the indent's
-y (b for y_D = 0) by default; the callers report the sensitivity to it. x_D runs over the grid's cell positions
-(the pass is sampled at the cell size). The cross term is evaluated as
-sigma_VM(A + B)^2 = sigma_VM(A)^2 + sigma_VM(B)^2 + 3 dev A : dev B (+ shear terms), one dot product per shift.
+Two choices the thesis leaves open, fixed here:
+
+- chi ("sigma_D has no meaning when the indent is out of the contact"): chi = 1 while the indent centre is inside
+  the contact, |x_D| <= X_chi, 0 otherwise; X_chi = the contact's half-length at the indent's y (b for y_D = 0) by
+  default. The benchmark ``benchmarks/life_transient.py`` reports the sensitivity (X_chi = 0.5 b).
+- the contact condition ("some special care is needed when the two stress distributions are assembled"): the
+  emulated pressure p_S(x) + chi dP(x - x_D) must stay >= 0. It does not for a zone-B indent (the hole is unloaded,
+  dP = -p_S(0) there) away from the centre, where p_S < p_S(0): the plain sum makes the hole pull on the surface
+  and overestimates sigma_Dmax by 4-10 % against the full transient. The "contact" form (default) adds the stress
+  of the clipped part max(0, -(p_S + chi dP)) at that position (one extra convolution per position where it is
+  non-zero); the "linear" form is eq 4.5 as printed. For zone-A indents the two coincide.
+
+x_D runs over the grid's cell positions (the pass is sampled at the cell size). Without clipping the cross term is
+evaluated as sigma_VM(A + B)^2 = sigma_VM(A)^2 + sigma_VM(B)^2 + 3 dev A : dev B (+ shear terms), one dot product
+per shift.
 
 Full transient: the pressure of the indent solved at every position x_D in a range (``frames``); outside that
 range the indent is out of the contact and the smooth field applies. Same max over the pass.
 
-Grid sizes for EHL (what the EHL model must provide): the smooth pressure and the centred-indent pressure on the
-same uniform grid (any extent, cell size dx = dy allowed or not; the indent centre on a cell centre), or a
-sequence of pressures with the indent moved by whole cells (the NU2 scheme's Courant number 1 does exactly that),
-plus the Hertz scales b, p_H and the elastic constants of the indented body. Surface tractions (sliding) are not
-included: the stress kernels here are those of a normal pressure only.
+What an EHL model must provide to use this module unchanged: (a) the smooth pressure and the pressure with the
+indent centred, on the same uniform grid (:class:`PressureMap`: cell centres x, y in m with the contact centre at
+x = y = 0, any extent, dx and dy need not be equal, the indent centre on a cell centre, p = 0 on the grid's edges),
+for the pseudo-transient; or (b) for the full transient, the pressures with the indent moved by whole cells along
+x (the NU2 scheme's Courant number 1 moves it exactly one cell per time step), as ``{shift: pressure}``; plus the
+Poisson ratio of the indented body, and for the life quantities the Hertz semi-axis b and p_H
+(:func:`femcheck.problems.life_output.indent_life`). Surface tractions (sliding, EHL shear) are not included: the
+kernels are those of a normal pressure only, so a traction field cannot be passed yet.
 """
 from __future__ import annotations
 
@@ -46,6 +59,7 @@ from .convolution import DCFFT
 from .layered_stress import strip_stress
 from .stress import COMPONENTS, rectangle_stress
 
+EDGE_TOL = 1e-9      # pressure allowed on the edge of a grid the stresses extend (relative to its maximum)
 # weights turning a stress tensor B into the vector w such that A . w = 3 dev A : dev B + 6 (shear A . shear B)
 _CROSS_SHEAR = 6.0
 
@@ -181,6 +195,14 @@ def _extend(pm: PressureMap, x_range: tuple[float, float], y_range: tuple[float,
     i_hi = max(nx - 1, int(np.ceil((x_range[1] - pm.x[0]) / pm.dx - 1e-9)))
     j_lo = min(0, int(np.floor((y_range[0] - pm.y[0]) / pm.dy + 1e-9)))
     j_hi = max(ny - 1, int(np.ceil((y_range[1] - pm.y[0]) / pm.dy - 1e-9)))
+    p, top = pm.pressure, max(float(np.abs(pm.pressure).max()), 1e-300)
+    # along x always (the pass must cover the whole contact), across y where the grid is extended
+    edges = [p[0], p[-1]] + ([p[:, 0], p[:, -1]] if (j_lo < 0 or j_hi > ny - 1) else [])
+    worst = max((float(np.abs(e).max()) for e in edges), default=0.0) / top
+    if worst > EDGE_TOL:
+        raise InputError("pressure", f"the pressure on the edge of its grid is {worst:.3g} of its maximum; the pass "
+                         f"must cover the whole contact and the stress grid extends the pressure with zeros, so it "
+                         f"must vanish there (allowed: <= {EDGE_TOL:g})")
     x = pm.x[0] + np.arange(i_lo, i_hi + 1) * pm.dx
     y = pm.y[0] + np.arange(j_lo, j_hi + 1) * pm.dy
     return _StressGrid(x.size, y.size, -i_lo, -j_lo, x, y)
