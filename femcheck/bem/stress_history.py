@@ -220,7 +220,7 @@ def _window(coords: np.ndarray, spacing: float, centre: float, half: float | Non
     return idx, w[idx]
 
 
-def _check_window(pm: PressureMap, y_half: float | None, depths: np.ndarray, depth_weights: np.ndarray) -> None:
+def _check_window(y_half: float | None, depths: np.ndarray, depth_weights: np.ndarray) -> None:
     if y_half is not None and not (0 < y_half < np.inf):
         raise InputError("life.window", f"{y_half} m is not allowed; allowed: (0, inf) m")
     if depths.ndim != 1 or depths.shape != depth_weights.shape or depths.min() <= 0:
@@ -252,7 +252,7 @@ def smooth_history(pm: PressureMap, nu: float, depths: np.ndarray, depth_weights
     """T_S(y, z) = max over x of sigma_VM below a smooth contact, on the cells within ``y_half`` (m) of
     ``y_centre`` (None: every cell of the grid across)."""
     depths, depth_weights = np.asarray(depths, float), np.asarray(depth_weights, float)
-    _check_window(pm, y_half, depths, depth_weights)
+    _check_window(y_half, depths, depth_weights)
     yr = (y_centre - y_half, y_centre + y_half) if y_half is not None else (pm.y[0], pm.y[-1])
     g = _extend(pm, (pm.x[0], pm.x[-1]), yr)
     jw, wy = _window(g.y, pm.dy, y_centre, y_half)
@@ -272,7 +272,7 @@ def _pass_setup(pm: PressureMap, centre: tuple[int, int], window: float, reach: 
     [reach] (m). Returns the grid, the indent's stress-grid indices, material offsets q (cells) with weights, and
     the across-track window."""
     depths, depth_weights = np.asarray(depths, float), np.asarray(depth_weights, float)
-    _check_window(pm, window, depths, depth_weights)
+    _check_window(window, depths, depth_weights)
     xc, yc = pm.x[centre[0]], pm.y[centre[1]]
     g = _extend(pm, (reach[0] - window - pm.dx, reach[1] + window + pm.dx), (yc - window, yc + window))
     iD, jD = centre[0] + g.ox, centre[1] + g.oy

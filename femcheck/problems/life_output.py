@@ -175,7 +175,7 @@ def indent_life(hist: sh.StressHistory, a: float, p_hertz: float, scene: Scene) 
          "fatigue_life": _life_of(max(per_length, 0.0), c),
          "life_ratio": life.dented_life_ratio(ratio, fd, c.e),
          "stress_ratio": td["value"] / ts["value"], "stress_history_max": td["value"]}
-    j = int(np.argmin(np.abs(hist.y)))
+    j = hist.y.size // 2          # the window across is centred on the indent's track
     stats = {**_common_stats(c, w, hist.depths, p_hertz, ts["value"]), "indent_fraction": fd,
              "risk_ratio": ratio, "track_window_length": track,
              "stress_history_max_smooth": ts["value"],
