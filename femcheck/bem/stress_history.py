@@ -102,13 +102,6 @@ class PressureMap:
         """From a :class:`femcheck.bem.halfspace.Grid` (cells centred on the origin)."""
         return cls(grid.x, grid.y, pressure)
 
-    def index_of(self, x: float, y: float) -> tuple[int, int]:
-        """Cell whose centre is (x, y) (m); the point must be a cell centre."""
-        i, j = (x - self.x[0]) / self.dx, (y - self.y[0]) / self.dy
-        if abs(i - round(i)) > 1e-6 or abs(j - round(j)) > 1e-6:
-            raise InputError("indent", f"the indent centre ({x:g}, {y:g}) m is not on a cell centre of the grid")
-        return int(round(i)), int(round(j))
-
 
 @dataclass
 class StressHistory:
