@@ -50,7 +50,8 @@ def store(k: str, res: ModelResult) -> None:
     d = cache_dir()
     d.mkdir(parents=True, exist_ok=True)
     meta = json.dumps({"model": res.model, "status": res.status, "time_s": res.time_s,
-                       "quantities": _jsonable(res.quantities), "stats": _jsonable(res.stats)})
+                       # quantities stay floats: an infinite fatigue life must come back as inf, not None
+                       "quantities": {k: float(v) for k, v in res.quantities.items()}, "stats": _jsonable(res.stats)})
     fd, tmp = tempfile.mkstemp(dir=d, suffix=".npz.tmp")
     with os.fdopen(fd, "wb") as fh:
         np.savez_compressed(fh, __meta__=np.array(meta), **res.fields)

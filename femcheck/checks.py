@@ -6,11 +6,14 @@ import numpy as np
 from .result import ModelResult
 
 LOAD_BALANCE_TOL = 1e-6
+UNBOUNDED = ("fatigue_life",)     # +inf is a valid answer: nothing exceeds the fatigue limit (infinite life)
 
 
 def physical_violations(res: ModelResult, applied_load: float) -> list[str]:
-    """Non-finite quantities, negative pressures or roller loads, and load imbalance |total_force - W| / W > 1e-6."""
-    issues = [f"non-finite {k}" for k, v in res.quantities.items() if not np.isfinite(v)]
+    """Non-finite quantities (except +inf for ``UNBOUNDED`` ones), negative pressures or roller loads, and load
+    imbalance |total_force - W| / W > 1e-6."""
+    issues = [f"non-finite {k}" for k, v in res.quantities.items()
+              if not np.isfinite(v) and not (k in UNBOUNDED and v == np.inf)]
     p = res.fields.get("pressure")
     if p is not None:
         if not np.all(np.isfinite(p)):

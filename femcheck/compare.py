@@ -108,6 +108,8 @@ class _Judge:
         self.seen: dict[tuple[str, str], list[float]] = {}      # (reference, quantity) -> values compared
 
     def duplicate(self, quantity: str, ref: str, value: float, ref_value: float) -> bool:
+        if not np.isfinite(value):      # an infinite life equal to the reference's is an agreement, not a copy
+            return False
         done = self.seen.setdefault((ref, quantity), [])
         if value == ref_value or value in done:
             return True
@@ -157,8 +159,9 @@ def _scalar(judge: _Judge, model: str, q: dict[str, float], ref: str, qr: dict[s
         if name in qr and qr[name] != 0 and not name.startswith(LOAD_QUANTITIES) and name not in skip:
             if judge.duplicate(name, ref, q[name], qr[name]):
                 continue
-            rel = abs(q[name] - qr[name]) / abs(qr[name])
-            out.append(judge(name, model, ref, q[name], qr[name], rel))
+            a, b = q[name], qr[name]      # equal infinite values (an infinite life) agree; one infinite does not
+            rel = 0.0 if a == b else abs(a - b) / abs(b) if np.isfinite(a) and np.isfinite(b) else np.inf
+            out.append(judge(name, model, ref, a, b, rel))
     return out
 
 

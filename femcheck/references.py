@@ -71,7 +71,7 @@ def store(kind: str, model: str, key: str, res: ModelResult, scene_name: str, pa
                   .isoformat(timespec="seconds"), "machine": {"platform": platform.platform(),
                                                               "cpus": os.cpu_count()},
                   "run_time_s": res.time_s}
-    meta = {"model": res.model, "time_s": res.time_s, "quantities": _jsonable(res.quantities),
+    meta = {"model": res.model, "time_s": res.time_s, "quantities": {k: float(v) for k, v in res.quantities.items()},
             "stats": _jsonable(res.stats), "provenance": provenance}
     for path, write in ((field_path, lambda fh: np.savez_compressed(fh, **res.fields)),
                         (meta_path, lambda fh: fh.write(json.dumps(meta, indent=1).encode()))):

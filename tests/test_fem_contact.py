@@ -100,8 +100,9 @@ def test_penalty_and_active_set_agree(rigid_case):
 
 
 def test_mixed_formulation_removes_locking(rigid_case):
-    # nu = 0.4999: the displacement P2 formulation locks (measured +1.7 % on p_max at this level), the
-    # Taylor-Hood P2/P1 mixed formulation stays within 0.2 % of Hertz.
+    # nu = 0.4999: the displacement P2 formulation locks (its nodal pressures oscillate; the shape-agnostic peak
+    # estimate is off by -1.8 % at this level, +1.7 % with the former Hertz-shaped one), the Taylor-Hood P2/P1
+    # mixed formulation stays within 0.2 % of Hertz.
     rubberlike = Elastic(210e9, 0.4999)
     rigid = rigid_case[1]
     h = line_contact(1e6, 0.01, effective_modulus(rigid, rubberlike))
@@ -109,7 +110,7 @@ def test_mixed_formulation_removes_locking(rigid_case):
     disp = solve_level(0.01, rigid, rubberlike, 1e6, h.half_width, 1,
                        FEMLineSettings(formulation="displacement"))
     assert mixed.p_max == pytest.approx(h.p_max, rel=2e-3)
-    assert disp.p_max / h.p_max - 1 > 5e-3
+    assert abs(disp.p_max / h.p_max - 1) > 5e-3
 
 
 def test_contact_leaving_candidate_zone_is_an_error(rigid_case):

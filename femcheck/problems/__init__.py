@@ -1,7 +1,8 @@
 """Problem kinds: each module declares its scene schema (SCHEMA, DEFAULTS, REQUIRED), cross-key checks
 (``validate``) and its models (MODELS: name -> function(scene, progress) -> ModelResult).
 
-A scene's ``kind`` is the name of a module of this package; adding a kind means adding a module here, nothing
+A scene's ``kind`` is the name of a module of this package (modules starting with ``_`` are shared helpers of
+several kinds, not kinds); adding a kind means adding a module here, nothing
 else (the kinds are found by listing the package, so this file, which every model's key covers, never changes
 when a kind is added).
 """
@@ -14,7 +15,7 @@ from types import ModuleType
 
 from ..errors import InputError
 
-KINDS = tuple(sorted(m.name for m in pkgutil.iter_modules([str(Path(__file__).parent)]) if not m.ispkg))
+KINDS = tuple(sorted(m.name for m in pkgutil.iter_modules([str(Path(__file__).parent)]) if not m.ispkg and not m.name.startswith("_")))
 
 
 def problem(kind: str) -> ModuleType:

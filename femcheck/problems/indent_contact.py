@@ -5,6 +5,8 @@ Indent keys are dimensionless as in the thesis: ``indent.diameter`` Phi (in the 
 coefficients calibrated on the BEM: ``femcheck calibrate indent-dry``), ``bem`` (half-space BEM, indented minus
 smooth solution). Quantities: ``additional_pressure`` dP = max(p_indented - p_smooth) (Pa),
 ``indent_depth_ratio`` F = D_d/D_i (deformed over initial hole depth), ``p_max``, ``total_force``.
+With ``outputs.life``: the life quantities of :mod:`femcheck.problems._life_output` (``bem``: pseudo-transient pass;
+``bem_transient``: the indent solved at every position of the pass, :mod:`femcheck.problems._indent_life`).
 """
 from __future__ import annotations
 
@@ -21,15 +23,17 @@ from ..geometry.profiles import indented, paraboloid
 from ..materials import effective_modulus
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
+from . import _indent_life as indent_life, _life_output as life_output
 
-MODEL_NAMES = ("analytic", "bem")
+MODEL_NAMES = ("analytic", "bem", "bem_transient")
 
 SCHEMA: dict[str, Key] = {
     "geometry.radius": Key("float", "m", "ball radius R", lo=0.0),
     "load.normal": Key("float", "N", "normal load", lo=0.0),
     "indent.diameter": Key("float", "a", "indent diameter Phi / Hertz radius", lo=0.05, hi=1.0, lo_closed=True,
                            hi_closed=True),
-    "indent.slope": Key("float", "-", "indent slope D/Phi (D in a^2/R)", lo=0.0, hi=2.0, hi_closed=True),
+    "indent.slope": Key("float", "-", "indent slope D/Phi (D in a^2/R; 0: smooth)", lo=0.0, hi=2.0,
+                        lo_closed=True, hi_closed=True),
     "indent.decay": Key("float", "-", "shoulder decay K (3: high shoulders, 8: flat)", lo=2.0, hi=10.0,
                         lo_closed=True, hi_closed=True),
     **material_keys("body1"),
@@ -40,18 +44,24 @@ SCHEMA: dict[str, Key] = {
     "numerics.bem_domain": Key("float", "a", "BEM half-side / Hertz radius", lo=1.2, hi=5.0, hi_closed=True),
     "numerics.bem_tol": Key("float", "-", "BEM relative gap residual", lo=0.0, hi=1e-3, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+    **life_output.keys(indent=True),
 }
 DEFAULTS: dict[str, Any] = {
+    **life_output.defaults(10.0 / 9.0, indent=True),
     "materials.body1.rigid": False,
     "materials.body2.rigid": False,
-    "models.run": list(MODEL_NAMES),
+    "models.run": ["analytic", "bem"],
     "models.references": ["bem"],
     "numerics.bem_cells": 193,
     "numerics.bem_domain": 1.6,
     "numerics.bem_tol": 1e-10,
 }
 REQUIRED = ("geometry.radius", "load.normal", "indent.diameter", "indent.slope", "indent.decay")
-DEPENDS: dict[str, dict] = {}
+# the full transient (a BEM solve per indent position, minutes at 129^2) is cached and stored like an FE reference
+DEPENDS: dict[str, dict] = {
+    "bem_transient": {"params": ("geometry.", "load.", "materials.", "indent.", "life.", "outputs.life",
+                                 "numerics.bem_", "numerics.life_"), "reference": True},
+}
 
 
 def _hertz(params: dict[str, Any]) -> hertz.EllipticContact:
@@ -61,6 +71,7 @@ def _hertz(params: dict[str, Any]) -> hertz.EllipticContact:
 
 def validate(params: dict[str, Any]) -> None:
     check_body_pair(params, ("body1", "body2"))
+    life_output.check_body(params, "body2")
     h = _hertz(params)
     if h.semi_axis_x / params["geometry.radius"] > 0.1:
         raise InputError("load.normal", f"{params['load.normal']:g} N gives a/R > 0.1 (half-space theory fails)")
@@ -117,12 +128,44 @@ def bem(scene: Scene, progress=None) -> ModelResult:
              "smooth_iterations": s["smooth"].iterations, "nx": g.nx, "dx_over_a": g.dx / s["a"],
              "cells_per_indent_diameter": s["phi"] / g.dx, "additional_pressure_over_p_hertz": s["dp"] / s["p_hertz"]}
     j = g.ny // 2
-    return ModelResult("bem", quantities=q, stats=stats,
-                       fields={"x": g.x, "pressure": dent.pressure[:, j], "map_x": g.x, "map_y": g.y,
-                               "pressure_map": dent.pressure})
+    fields = {"x": g.x, "pressure": dent.pressure[:, j], "map_x": g.x, "map_y": g.y, "pressure_map": dent.pressure}
+    if scene["outputs.life"]:
+        out = indent_life.pseudo_transient(scene, s, scene["materials.body2.nu"])
+        q.update(out.quantities)
+        stats["life"] = out.stats
+        fields.update(out.fields)
+        if scene["life.size_sweep"]:
+            stats["life"]["size_sweep"] = indent_life.size_sweep(scene, solve_indented, scene["materials.body2.nu"])
+    return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem}
+def bem_transient(scene: Scene, progress=None) -> ModelResult:
+    """Life quantities of the full transient pass: the indented contact solved by the BEM at every cell position
+    of the indent (:func:`femcheck.problems._indent_life.transient`); the reference of the pseudo-transient."""
+    if not scene["outputs.life"]:
+        raise InputError("models.run", "bem_transient only computes the life; set outputs.life = true")
+    p = scene.params
+    s = solve_indented(p)
+    h = _hertz(p)
+    R, K = p["geometry.radius"], p["indent.decay"]
+    solves = [s["smooth"], s["dent"]]
+
+    def solve_at(x0: float) -> np.ndarray:
+        gap = indented(paraboloid(R, R), s["phi"], s["depth"], K, x0=x0)
+        r = halfspace.solve(s["grid"], gap, h.modulus, h.load, tol=p["numerics.bem_tol"]).result
+        if r.contact[0, :].any() or r.contact[-1, :].any():
+            raise ConvergenceError("BEM indented contact", r.iterations, r.residual, p["numerics.bem_tol"],
+                                   "contact reaches the edge of the BEM domain; raise numerics.bem_domain")
+        solves.append(r)
+        return r.pressure
+
+    out = indent_life.transient(scene, s, solve_at, p["materials.body2.nu"], p["numerics.bem_domain"])
+    stats = {"iterations": sum(r.iterations for r in solves), "residual": max(r.residual for r in solves),
+             "bem_solves": len(solves), "life": out.stats}
+    return ModelResult("bem_transient", quantities=out.quantities, stats=stats, fields=out.fields)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "bem_transient": bem_transient}
 CALIBRATION_FILE = indent.COEFFS        # where `femcheck calibrate` stores the zone A/B coefficients
 
 # Calibration grid: zone A (S <= 1/4) for n, m and zone B for s, omega, at Phi = 0.5 over the thesis' K range.

@@ -20,6 +20,7 @@ from ..qoi import half_width
 from ..result import ModelResult
 from ..scene import (Key, Scene, check_body_pair, elastic, fem_line_mesh_keys, material_keys, model_keys,
                      tolerance_key)
+from . import _life_output as life_output
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1   # beyond this the half-space and small-strain assumptions of every model here fail
@@ -40,10 +41,12 @@ SCHEMA: dict[str, Key] = {
     "numerics.fem_method": Key("str", "-", "contact algorithm", choices=("active_set", "penalty")),
     "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E* / h)", lo=1.0, hi=1e9, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+    **life_output.keys(),
 }
 
 _FEM = FEMLineSettings()
 DEFAULTS: dict[str, Any] = {
+    **life_output.defaults(9.0 / 8.0, depth_max=life_output.LINE_DEPTH_MAX),
     "materials.cylinder.rigid": False,
     "outputs.subsurface_stress": False,
     "models.run": list(MODEL_NAMES),
@@ -106,6 +109,11 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
         stats["stress_body"] = "block"
         fields.update({"stress_x": f.x, "stress_z": f.z, "von_mises": f.von_mises, "tresca": f.tresca,
                        "tau_xz": f.components["tau_xz"]})
+    if scene["outputs.life"]:
+        out = life_output.line_life_closed_form(scene, h.half_width, h.p_max, scene["materials.block.nu"])
+        q.update(out.quantities)
+        stats["life"] = out.stats
+        fields.update(out.fields)
     return ModelResult("analytic", quantities=q, stats=stats, fields=fields)
 
 
@@ -123,7 +131,14 @@ def bem(scene: Scene, progress=None) -> ModelResult:
     stats = {"iterations": r.iterations, "residual": r.residual, "n_elements": sol.x.size, "dx": sol.dx,
              "domain_half_length": half_domain, "solver": "polonsky_keer", "convolution": "dcfft",
              "contact_cells": int(r.contact.sum())}
-    return ModelResult("bem", quantities=q, stats=stats, fields={"x": sol.x, "pressure": r.pressure})
+    fields = {"x": sol.x, "pressure": r.pressure}
+    if scene["outputs.life"]:
+        out = life_output.line_life_strips(scene, r.pressure, sol.dx, h.half_width, h.p_max,
+                                           scene["materials.block.nu"])
+        q.update(out.quantities)
+        stats["life"] = out.stats
+        fields.update(out.fields)
+    return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 
 def fem_settings(scene: Scene) -> FEMLineSettings:

@@ -21,6 +21,7 @@ from ..materials import effective_modulus
 from ..qoi import semi_axes
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, model_keys, tolerance_key
+from . import _life_output as life_output
 
 MODEL_NAMES = ("analytic", "bem", "fem")
 MAX_A_OVER_R = 0.1
@@ -61,8 +62,10 @@ SCHEMA: dict[str, Key] = {
     "numerics.stress_depth_max": Key("float", "a_H", "deepest level / Hertz semi-axis x", lo=0.0, hi=20.0,
                                      hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+    **life_output.keys(),
 }
 DEFAULTS: dict[str, Any] = {
+    **life_output.defaults(10.0 / 9.0),
     "geometry.profile": "paraboloid",
     "materials.body1.rigid": False,
     "materials.body2.rigid": False,
@@ -120,6 +123,7 @@ def validate(params: dict[str, Any]) -> None:
     if params["geometry.profile"] == "sphere" and not has_r:
         raise InputError("geometry.profile", "'sphere' needs geometry.radius; allowed for Rx, Ry: paraboloid")
     check_body_pair(params, ("body1", "body2"))
+    life_output.check_body(params, "body2")
     h = _hertz(params)
     rx, ry = radii(params)
     aspect = h.semi_axis_y / h.semi_axis_x     # the BEM cell aspect ratio: the grid follows the ellipse
@@ -153,6 +157,10 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
         # closed form on the axis of a sphere contact (Johnson eq 3.45), in body 2 (the flat)
         q.update(stress_closed_form.hertz_sphere_maxima(h.semi_axis_x, h.p_max, scene["materials.body2.nu"]))
         stats["stress_body"] = "body2"
+    if scene["outputs.life"] and rx == ry:
+        # smooth contact: the history's maximum is the field's, on the axis (Johnson eq 3.45)
+        q["stress_history_max"] = stress_closed_form.hertz_sphere_maxima(
+            h.semi_axis_x, h.p_max, scene["materials.body2.nu"])["von_mises_max"]
     return ModelResult("analytic", quantities=q, stats=stats, fields={"x": x, "pressure": h.pressure(x, 0 * x)})
 
 
@@ -203,6 +211,12 @@ def bem(scene: Scene, progress=None) -> ModelResult:
                            "von_mises_max_at": m_vm, "tau_xz_max_at": m_xz}
         fields.update({"stress_x": g.x, "stress_z": depths, "von_mises": vm[:, :, j].copy(),
                        "tau_xz": f.components["tau_xz"][:, :, j].copy()})
+    if scene["outputs.life"]:
+        out = life_output.point_life(scene, g, r.pressure, h.semi_axis_x, h.semi_axis_y, h.p_max,
+                                     scene["materials.body2.nu"])
+        q.update(out.quantities)
+        stats["life"] = out.stats
+        fields.update(out.fields)
     return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 

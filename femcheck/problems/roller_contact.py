@@ -22,6 +22,7 @@ from ..materials import effective_modulus
 from ..qoi import edge
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, model_keys, tolerance_key
+from . import _life_output as life_output
 
 MODEL_NAMES = ("analytic", "bem", "finite_line", "fem")
 
@@ -55,8 +56,10 @@ SCHEMA: dict[str, Key] = {
     **fem_mesh_keys(4, 0.02, 1.0, 500.0, "FEM candidate zone across / Hertz half-width", 5.0, "L",
                     "FEM block beyond the footprint / roller length", 0.5, 20.0),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
+    **life_output.keys(),
 }
 DEFAULTS: dict[str, Any] = {
+    **life_output.defaults(9.0 / 8.0, depth_max=life_output.LINE_DEPTH_MAX),
     "geometry.crown": "none",
     "geometry.flat_length": 0.0,
     "geometry.tilt": 0.0,
@@ -102,6 +105,7 @@ def _hertz(params: dict[str, Any]) -> hertz.LineContact:
 
 def validate(params: dict[str, Any]) -> None:
     check_body_pair(params, ("roller", "race"))
+    life_output.check_body(params, "race")
     rr = params.get("geometry.race_radius")
     if rr is not None and rr < 0 and -rr <= params["geometry.radius"]:
         raise InputError("geometry.race_radius", f"a concave raceway must be larger than the roller: allowed "
@@ -144,8 +148,14 @@ def analytic(scene: Scene, progress=None) -> ModelResult:
     x = np.linspace(-1.5 * h.half_width, 1.5 * h.half_width, 601)
     delta = h.half_width * h.p_max / h.modulus * (np.log(2 * L / h.half_width) + 0.5)
     q = {"p_centre": h.p_max, "half_width": h.half_width, "approach": delta, "total_force": scene["load.normal"]}
-    return ModelResult("analytic", quantities=q, stats={"E_star": h.modulus, "R": h.radius},
-                       fields={"x": x, "pressure": h.pressure(x)})
+    stats: dict[str, Any] = {"E_star": h.modulus, "R": h.radius}
+    fields = {"x": x, "pressure": h.pressure(x)}
+    if scene["outputs.life"]:      # the infinite line's life per unit length times L (a contrast, like the rest)
+        out = life_output.line_life_closed_form(scene, h.half_width, h.p_max, scene["materials.race.nu"], L)
+        q.update(out.quantities)
+        stats["life"] = out.stats
+        fields.update(out.fields)
+    return ModelResult("analytic", quantities=q, stats=stats, fields=fields)
 
 
 def bem_grid(scene: Scene) -> halfspace.Grid:
@@ -192,6 +202,12 @@ def bem(scene: Scene, progress=None) -> ModelResult:
              "contact_cells": int(r.contact.sum()), "solver": "polonsky_keer", "convolution": "dcfft"}
     fields = {"x": g.x, "pressure": r.pressure[:, jc], "y": g.y, "pressure_axial": centre_line,
               "map_x": g.x, "map_y": g.y, "pressure_map": r.pressure}
+    if scene["outputs.life"]:
+        hz = _hertz(scene.params)
+        out = life_output.roller_life(scene, g, r.pressure, hz.half_width, hz.p_max, scene["materials.race.nu"])
+        q.update(out.quantities)
+        stats["life"] = out.stats
+        fields.update(out.fields)
     return ModelResult("bem", quantities=q, stats=stats, fields=fields)
 
 
