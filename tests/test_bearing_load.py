@@ -244,7 +244,7 @@ def test_stress_sweep_has_no_failure():
     # the FE reference is left out of sweeps (minutes per case): the cases are 'unchecked' against it, and a
     # lost equilibrium or a negative roller load makes a model 'failed' (femcheck.checks)
     assert [(c.label, c.problems) for c in cases if c.status not in ("ok", "unchecked")] == []
-    assert all(set(c.models) >= {"condensed", "rigid_ring"} for c in cases if c.status == "unchecked")
+    assert all("rigid_ring" in c.models for c in cases)
     labels = " ".join(c.label for c in cases)
     for needle in ("P_d/delta_r=-0.5", "P_d/delta_r=20", "Z=3", "Z=40", "F_r=1e-06", "power n=1.5", "housing arc 15"):
         assert needle in labels

@@ -51,7 +51,9 @@ def test_run_json_schema(run_json):
     assert all(c["verdict"] != "not valid here" for c in d["comparisons"])
     assert all(c["pass"] == (c["verdict"] == "valid") for c in d["comparisons"])
     pairs = {(c["model"], c["reference"]) for c in d["comparisons"]}
-    assert {("bem", "analytic"), ("bem", "fem"), ("fem", "analytic"), ("fem@finest", "analytic")} <= pairs
+    # fem@finest is compared only where it differs from the reported value (extrapolated levels); at hertz-line's
+    # defaults the certified p_max is the finest level's (the last three levels agree within 5e-5)
+    assert {("bem", "analytic"), ("bem", "fem"), ("fem", "analytic")} <= pairs
 
 
 @pytest.mark.slow

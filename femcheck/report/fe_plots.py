@@ -89,8 +89,8 @@ def convergence(run: RunResult, path: Path) -> list[str]:
                 ref = float(c["value"])
                 err = np.abs(vals / ref - 1.0)
                 if c.get("certified"):
-                    ax.loglog(h, np.maximum(err, 1e-9), "o-", color=colour,
-                              label=f"{q}: order {c['order']:.2f}, certified")
+                    how = f"order {c['order']:.2f}" if c.get("order") is not None else "levels agree"
+                    ax.loglog(h, np.maximum(err, 1e-9), "o-", color=colour, label=f"{q}: {how}, certified")
                 else:
                     ax.loglog(h[:-1], np.maximum(err[:-1], 1e-9), "s--", color=colour,
                               label=f"{q}: not certified (change to the finest level)")
