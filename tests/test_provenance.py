@@ -34,6 +34,10 @@ def test_closure_follows_relative_deferred_and_parent_imports():
     assert {"femcheck.meshes.block", "femcheck.meshes.plane", "femcheck.meshes.srb_segments",
             "femcheck.solvers.two_body", "femcheck.geometry.srb", "femcheck.fem"} <= set(c)
     assert "femcheck" not in c and "femcheck.runner" not in c and "femcheck.report.html" not in c
+    # imports inside functions (the kinds load their heavy models lazily) are part of the closure too
+    assert "femcheck.ehl.adapter" in provenance.closure(["femcheck.problems.ehl_contact"])
+    assert {"femcheck.fem.bearing2d", "femcheck.bem.bearing_condensed"} <= \
+        set(provenance.closure(["femcheck.problems.bearing_load"]))
 
 
 @pytest.mark.parametrize("kind", sorted(KINDS))
