@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 UNITS: dict[str, str] = {
-    "p_max": "Pa", "p_centre": "Pa", "additional_pressure": "Pa",
+    "p_max": "Pa", "p_centre": "Pa", "p_end": "Pa", "additional_pressure": "Pa",
     "von_mises_max": "Pa", "tau_max": "Pa", "tau_xz_max": "Pa",
     "half_width": "m", "semi_axis_x": "m", "semi_axis_y": "m", "approach": "m", "edge_peak_y": "m",
     "von_mises_max_depth": "m", "tau_max_depth": "m", "tau_xz_max_depth": "m",
