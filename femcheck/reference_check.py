@@ -84,9 +84,12 @@ def compare_coarse(stored: ModelResult, fresh: ModelResult, rtol: float) -> tupl
     return compared, bad
 
 
-def check(scene_name: str, model: str, rtol: float = 1e-6, stored: ModelResult | None = None) -> CoarseCheck:
+def check(scene_name: str, model: str, rtol: float = 1e-6, stored: ModelResult | None = None,
+          coarse: dict | None = None) -> CoarseCheck:
     """Re-solve the coarsest level of ``model`` of the built-in scene ``scene_name`` and compare it with the
-    stored reference for the current key (or with ``stored``, e.g. an older file, to see what a change moved)."""
+    stored reference for the current key (or with ``stored``, e.g. an older file, to see what a change moved).
+    ``coarse``: the overrides that make the run its coarsest level (default: the kind's DEPENDS[model]['coarse'];
+    without either the whole model is re-solved)."""
     sc = load_scene(scene_name)
     dep = problem(sc.kind).DEPENDS[model]
     k = model_key(sc, model)
@@ -94,7 +97,7 @@ def check(scene_name: str, model: str, rtol: float = 1e-6, stored: ModelResult |
     out.stored = stored if stored is not None else references.load(sc.kind, model, k)
     if out.stored is None:
         return out
-    coarse = sc.with_overrides(dep.get("coarse", {}))
+    coarse = sc.with_overrides(dep.get("coarse", {}) if coarse is None else coarse)
     out.fresh = run_model(coarse, model, use_cache=False)
     if out.fresh.status != "ok":
         out.mismatches.append(f"the coarse re-solve {out.fresh.status}: {out.fresh.error}")

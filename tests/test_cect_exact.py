@@ -300,6 +300,7 @@ def test_exact_model_defaults_reach_kalker_within_1_percent(a_over_b, c11, c22):
         assert cert["certified"] and abs(value / c_ref - 1) <= cert["error_estimate"] + 0.002   # table rounding
 
 
+@pytest.mark.slow
 def test_spin_dominated_case_is_certified_within_1_percent():
     # The spin-dominated case (creep-curve with phi alone): it moved 5 % between 31^2 and 121^2. At the
     # defaults every non-zero force and moment is reported with an error estimate below 1 %, F_x vanishes by

@@ -182,6 +182,7 @@ def test_bentall_johnson_free_rolling_creepage():
     assert sol.normal.pressure.max() == pytest.approx(103.14e6, rel=1e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mu, xi_contact, p_max", [(0.05, 4.29e-4, 103.63e6), (10.0, 3.59e-4, 103.81e6)])
 def test_bentall_johnson_panagiotopoulos_matches_contact(mu, xi_contact, p_max):
     # CONTACT's free-rolling creepages with the Panagiotopoulos process (user guide §5.3): 0.000429 at mu = 0.05

@@ -12,12 +12,20 @@ from femcheck.result import ModelResult
 STORED = [
     pytest.param("layer-rigid", "fem", id="layer-rigid"),
     pytest.param("layer-line", "fem", id="layer-line"),
-    pytest.param("coated-roller", "fem", id="coated-roller"),
+    pytest.param("coated-roller", "fem", id="coated-roller", marks=pytest.mark.slow),   # 8 s
     pytest.param("layer-point", "fem", id="layer-point"),
-    pytest.param("hertz-point", "fem", id="hertz-point"),
+    pytest.param("hertz-point", "fem", id="hertz-point", marks=pytest.mark.slow),       # 11 s
     pytest.param("srb-normal", "fem", id="srb-normal-fem", marks=pytest.mark.slow),
     pytest.param("srb-normal", "fem_conformal", id="srb-normal-fem_conformal", marks=pytest.mark.slow),
     pytest.param("roller-finite", "fem", id="roller-finite", marks=pytest.mark.slow),
+]
+# references whose kind declares no coarsest-level overrides: (scene, model, overrides, numbers compared at least)
+OTHERS = [
+    pytest.param("crb-rigid-rings", "fem", {"numerics.fem_levels": 1}, 3, id="crb-rigid-rings"),
+    pytest.param("crb-elastic-rings", "fem", {"numerics.fem_levels": 1}, 3, id="crb-elastic-rings"),
+    pytest.param("crb-housing-arc", "fem", {"numerics.fem_levels": 1}, 3, id="crb-housing-arc",
+                 marks=pytest.mark.slow),
+    pytest.param("ehl-smooth", "ehl", {}, 1, id="ehl-smooth"),     # the whole model (three grids): 3 s
 ]
 
 
@@ -34,6 +42,16 @@ def test_stored_reference_reproduces_its_coarsest_level(scene, model):
         f"{k}_{name}": v for name, sub in c.stored.stats.items() if isinstance(sub, dict)
         for k, v in sub.get("certificates", {}).items()}
     assert certs and all({"value", "certified", "error_estimate", "note"} <= set(v) for v in certs.values())
+
+
+@pytest.mark.parametrize("scene, model, coarse, at_least", OTHERS)
+def test_other_stored_references_reproduce_their_coarsest_level(scene, model, coarse, at_least):
+    c = reference_check.check(scene, model, coarse=coarse)
+    assert c.stored is not None, (f"references/ has no {scene} {model} entry for the current code (key "
+                                  f"{c.key[:16]}); regenerate it with `{c.command}`")
+    assert c.fresh.status == "ok", c.fresh.error
+    assert len(c.compared) >= at_least
+    assert not c.mismatches, f"{scene} {model}: the stored reference is stale:\n  " + "\n  ".join(c.mismatches)
 
 
 def test_a_stored_number_off_by_one_part_in_a_million_is_caught():

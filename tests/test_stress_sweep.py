@@ -21,6 +21,7 @@ def test_fe_references_are_left_out_by_default():
     assert case_models(case, ["bem", "thin_layer", "analytic"]) == ["bem", "thin_layer"]
 
 
+@pytest.mark.slow
 def test_case_with_no_comparison_is_unchecked_not_ok():
     # issue 12 finding 7: carter-2d with a rigid cylinder skips Carter (its only reference): nothing compared
     sc = load_scene("carter-2d")
