@@ -16,8 +16,8 @@ Method:
 - Load: the approach delta of the inner ring (spec §2.2) is solved by a secant on log N_I versus log delta so that
   the inner normal force sum p_n dA equals the target N within ``load_rtol`` (1e-4); each secant step re-solves
   the equilibrium from the previous one (warm start and its Jacobian).
-- Configurations (spec §6, paper §4.3): 1 from the nominal start; 2 from skewed starts (both signs, by default
-  |gamma| = 3 mrad) whose converged state must differ from configuration 1 (by more than 0.5 mrad in skew): when
+- Configurations (spec §6, paper §4.3): 1 from the nominal start; 2 from skewed starts (CONFIG2_STARTS: both
+  skew signs, |gamma| 2 and 4 mrad with a tilt and a larger axial offset) whose converged state must differ from configuration 1 (by more than 0.5 mrad in skew): when
   no such state is found the result says so (``status`` 2, ``success`` False), never a silent fallback.
 
 Results as scipy.optimize: :class:`EquilibriumResult` (``success``, ``status``, ``message``, ``nit``, the
@@ -34,12 +34,14 @@ import numpy as np
 from ..errors import ConvergenceError, InputError
 from .conformal import GridTooSmall
 from .roller_state import (N_UNKNOWNS, RESIDUALS, UNKNOWNS, GridSpec, Numerics, RollerProblem, RollerState,
-                           check_problem, evaluate, nominal_start)
+                           check_problem, evaluate, fitted, nominal_start)
 
 FD_STEPS = np.array([1e-9, 1e-9, 5e-8, 5e-8, 1e-7, 1e-7])    # m, m, rad, rad, relative, relative (spec §6)
 UNKNOWN_SCALE = np.array([1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3])  # um, urad, 1e-3 relative (spec §6)
-CONFIG2_SKEW = 3e-3          # rad: the skewed start of configuration 2 (Fig. 19: skews up to -4 mrad)
-DISTINCT_SKEW = 5e-4         # rad: a configuration-2 state must differ from configuration 1 by this much
+# skewed starts of configuration 2 (skew gamma rad, tilt beta rad, extra axial offset d_y m), tried in order, both
+# skew signs (Fig. 19: gamma_p = -gamma down to -4 mrad, tilt to -0.4 mrad, larger d_y than configuration 1)
+CONFIG2_STARTS = ((2e-3, -2e-4, 4e-5), (-2e-3, -2e-4, 4e-5), (4e-3, -4e-4, 5e-5), (-4e-3, -4e-4, 5e-5))
+DISTINCT_SKEW = 5e-4         # rad: a configuration-2 state must differ from configuration 1 by this much in skew
 
 
 @dataclass
@@ -127,8 +129,11 @@ def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarra
     """Damped Newton / Broyden on R(x) = 0 at a fixed approach ``delta`` (module docstring). Returns
     (state, J, grids, converged)."""
     count = _Counter() if count is None else count
-    grids = grids.recentred(_centres(warm), num.ns) if warm is not None else grids
-    state = evaluate(problem, num, grids, x0, delta, warm=warm)
+    if warm is not None:
+        grids = grids.recentred(_centres(warm), num.ns)
+        state = evaluate(problem, num, grids, x0, delta, warm=warm)
+    else:
+        state, grids = fitted(problem, num, grids.predicted(problem, x0, num.ns), x0, delta)
     count.nfev += 1
     J = J0
     fresh = False
@@ -190,19 +195,21 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
         return _at_load(problem, num, xn if x0 is None else x0, dn if delta0 is None else delta0, load_rtol,
                         max_secant, max_iter, configuration, t0)
     ref = _at_load(problem, num, xn, dn, load_rtol, max_secant, max_iter, 1, t0)
+    base, d0 = (ref.x, ref.approach) if ref.success else (xn, dn)
     tried = []
-    for sign in (-1.0, 1.0):
-        xs = (ref.x if ref.success else xn).copy()
-        xs[3] = sign * CONFIG2_SKEW
-        r = _at_load(problem, num, xs, ref.approach if ref.success else dn, load_rtol, max_secant, max_iter, 2, t0)
+    for skew, tilt, dy in CONFIG2_STARTS:
+        xs = base.copy()
+        xs[2], xs[3] = tilt, skew
+        xs[0:2] += dy * problem.bearing.e_y[1:]
+        r = _at_load(problem, num, xs, d0, load_rtol, max_secant, max_iter, 2, t0)
         tried.append(r)
         if r.success and (not ref.success or abs(r.x[3] - ref.x[3]) > DISTINCT_SKEW):
-            return r
+            return replace(r, time_s=time.perf_counter() - t0)
     last = tried[-1]
+    back = any(t.success for t in tried)
     return replace(last, success=False, status=2, configuration=2, time_s=time.perf_counter() - t0,
-                   message="configuration 2 not found: from skewed starts of +-%.1f mrad Newton %s" % (
-                       CONFIG2_SKEW * 1e3, "returned to configuration 1" if any(t.success for t in tried)
-                       else "did not converge"))
+                   message="configuration 2 not found: from %d skewed starts (|skew| 2-4 mrad, both signs) Newton %s"
+                   % (len(tried), "returned to configuration 1" if back else "did not converge"))
 
 
 def _at_load(problem, num, x0, delta0, load_rtol, max_secant, max_iter, configuration, t0) -> EquilibriumResult:

@@ -31,7 +31,7 @@ import numpy as np
 from ..analytic.hertz import elliptic_contact
 from ..errors import InputError
 from ..geometry import srb_bearing as sb
-from .conformal import ConformalResult, resultants, solve_conformal
+from .conformal import ConformalResult, GridTooSmall, resultants, solve_conformal
 from .influence import CombinedConstants
 
 N_UNKNOWNS = 6
@@ -103,6 +103,19 @@ class GridSpec:
 
     def ds(self, contact: str, ns: int) -> float:
         return 2.0 * self.half_s[contact] / ns
+
+    def predicted(self, problem: RollerProblem, x, ns: int) -> "GridSpec":
+        """Windows centred where a rigid axial offset d_y of the roller moves the contacts: s_c = d_y r_g /
+        (r_g - R) (spec §10.1 check 3; 38.1 d_y inner, 48.8 d_y outer)."""
+        b = problem.bearing
+        d_y = float(np.asarray(x[:2]) @ b.e_y[1:])
+        rg = {"inner": b.groove_radius_inner, "outer": b.groove_radius_outer}
+        return self.recentred({c: d_y * rg[c] / (rg[c] - b.crown_radius) for c in sb.CONTACTS}, ns)
+
+    def moved(self, contact: str, cells: int, ns: int) -> "GridSpec":
+        s = dict(self.s_centre)
+        s[contact] += cells * self.ds(contact, ns)
+        return replace(self, s_centre=s)
 
     def recentred(self, centres: dict, ns: int) -> "GridSpec":
         """Windows moved to the lattice point nearest each pressure centre ``centres`` (m)."""
@@ -198,13 +211,17 @@ def evaluate(problem: RollerProblem, num: Numerics, grids: GridSpec, x, delta: f
         hz_approach = None
         if w is None:
             hz_approach = problem.hertz()[c].approach
-        res = solve_conformal(ci.grid.grid, ci.gap, problem.constants, problem.mu,
-                              np.stack([ci.slip.wx, ci.slip.ws]), ci.speeds.reference,
-                              ci.speeds.kappa if num.variable_dq else None, s=ci.grid.s,
-                              influence=num.influence, radius=ci.ring.groove_radius, tol=num.tangential_tol,
-                              normal_tol=num.normal_tol, tangential_solver=num.solver, warm=w,
-                              normal=w.normal if (reuse_normal and w is not None) else None,
-                              approach0=hz_approach)
+        try:
+            res = solve_conformal(ci.grid.grid, ci.gap, problem.constants, problem.mu,
+                                  np.stack([ci.slip.wx, ci.slip.ws]), ci.speeds.reference,
+                                  ci.speeds.kappa if num.variable_dq else None, s=ci.grid.s,
+                                  influence=num.influence, radius=ci.ring.groove_radius, tol=num.tangential_tol,
+                                  normal_tol=num.normal_tol, tangential_solver=num.solver, warm=w,
+                                  normal=w.normal if (reuse_normal and w is not None) else None,
+                                  approach0=hz_approach)
+        except GridTooSmall as err:
+            err.contact = c           # which window to move (see :func:`fitted`)
+            raise
         r = resultants(res, ci.grid, C)
         contacts[c] = ContactState(ci, res, r.force, r.moment)
     Fc = sb.centrifugal_force(b, pose, om)
@@ -216,6 +233,20 @@ def evaluate(problem: RollerProblem, num: Numerics, grids: GridSpec, x, delta: f
     tf, tm = tolerances(problem, num)
     return RollerState(np.asarray(x, dtype=float).copy(), float(delta), contacts, R,
                        R / np.array([tf, tf, tf, tm, tm, tm]), C, Fc, Mg)
+
+
+def fitted(problem: RollerProblem, num: Numerics, grids: GridSpec, x, delta: float, max_moves: int = 8):
+    """:func:`evaluate` on windows moved (by ns/8 cells at a time) until both contacts lie inside them: for a
+    start far from the last state. Returns (state, grids); GridTooSmall when the contact touches both ends or
+    an x edge."""
+    for _ in range(max_moves):
+        try:
+            return evaluate(problem, num, grids, x, delta), grids
+        except GridTooSmall as err:
+            if any(e.startswith("x") for e in err.edges) or len(err.edges) != 1:
+                raise
+            grids = grids.moved(err.contact, (1 if err.edges[0] == "s+" else -1) * max(1, num.ns // 8), num.ns)
+    return evaluate(problem, num, grids, x, delta), grids
 
 
 def nominal_start(problem: RollerProblem) -> tuple[np.ndarray, float]:
