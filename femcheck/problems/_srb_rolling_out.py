@@ -99,7 +99,8 @@ def quantities(problem: RollerProblem, r: EquilibriumResult) -> dict[str, float]
 
 def checks(problem: RollerProblem, r: EquilibriumResult, q: dict[str, float]) -> dict[str, float]:
     """Consistency numbers (spec §10.1 item 10): ``lateral_relation`` (sum F_lat + F_c sin a) / (k_lat d_y
-    (1 - 0.015)) - 1; ``fx_sum`` |f_x,i + f_x,e|; ``energy_balance`` P_fric / P_drive - 1; the largest scaled
+    (1 - 0.015)) - 1; ``tilt_relation`` beta / beta_rigid - 1
+    (the tilt of spec §3's rigid-ring relation); ``fx_sum`` |f_x,i + f_x,e|; ``energy_balance`` P_fric / P_drive - 1; the largest scaled
     residual; the inner normal force error."""
     b = problem.bearing
     s = r.state
@@ -107,7 +108,13 @@ def checks(problem: RollerProblem, r: EquilibriumResult, q: dict[str, float]) ->
     lhs = q["f_lat_sum"] * problem.mu * problem.load + Fc * np.sin(b.contact_angle)
     rhs = lateral_stiffness(problem) * q["d_y"] * (1.0 - 0.015)
     P = q["friction_power_inner"] + q["friction_power_outer"]
-    return {"lateral_relation": float(lhs / rhs - 1.0), "fx_sum": abs(q["f_x_inner"] + q["f_x_outer"]),
+    # tilt of rigid rings (spec §3): beta = -((1/(r_E - R) - 1/(r_I - R)) d_y + (D/2)(F_lat,E - F_lat,I)/((R - D/2) N))
+    #                                       / ((R - D/2)(1/(r_E - R) + 1/(r_I - R)) + 2)
+    R, D = b.crown_radius, b.roller_diameter
+    ki, ke = 1.0 / (b.groove_radius_inner - R), 1.0 / (b.groove_radius_outer - R)
+    dF = (q["f_lat_outer"] - q["f_lat_inner"]) * problem.mu * problem.load
+    beta = -((ke - ki) * q["d_y"] + 0.5 * D * dF / ((R - 0.5 * D) * problem.load)) / ((R - 0.5 * D) * (ke + ki) + 2.0)
+    return {"lateral_relation": float(lhs / rhs - 1.0), "tilt_relation": float(q["tilt"] / beta - 1.0), "fx_sum": abs(q["f_x_inner"] + q["f_x_outer"]),
             "energy_balance": float(P / drive_power(problem, s) - 1.0),
             "scaled_residual_max": float(np.max(np.abs(r.scaled_residual))),
             "inner_load_error": float(s.inner_load / problem.load - 1.0)}
