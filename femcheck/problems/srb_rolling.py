@@ -7,8 +7,10 @@ Models:
 - ``cect``: the roller equilibrium with conformal CECT contacts (:mod:`femcheck.cect.roller_equilibrium`): exact
   conformal gaps, 3D rigid slip, variable rolling step kappa(s), developed half-space influence coefficients; the
   inner ring's approach along e_z solved so that the inner normal force is ``load.normal``. Configuration 1 from
-  the nominal pose, configuration 2 from skewed starts (``equilibrium.configuration``); a configuration that does
-  not exist is reported as skipped with the reason (status 2 of the search), not replaced by the other.
+  the nominal pose; configuration 2 (``equilibrium.configuration``) found from skewed starts at
+  ``equilibrium.branch_start_load`` (2 kN, the low end of Fig. 17) and followed in N up to the load
+  (:func:`femcheck.cect.roller_sweep.configuration_2`); a configuration that does not exist at the load (or whose
+  branch folds below it) is reported as skipped with the reason (status 2), not replaced by the other.
 - ``paper``: seed 000 Table 2's CECT column (mu = 0.1 or 0.3 at 5.5 kN; skipped otherwise): the reference every
   model is compared against, together with ``cect``.
 - ``strip`` / ``strip_s0``: strip theory H+C with the 2-unknown speed iteration (:mod:`femcheck.cect.strip_bearing`)
@@ -34,6 +36,7 @@ from ..cect.influence import combined_constants
 from ..cect.influence_conformal import INFLUENCE_OPTIONS
 from ..cect.roller_equilibrium import EquilibriumResult, equilibrium, require_converged
 from ..cect.roller_state import Numerics, RollerProblem
+from ..cect.roller_sweep import configuration_2
 from ..cect.strip_bearing import strip_bearing
 from ..errors import InputError
 from ..geometry import srb_bearing as sb
@@ -63,6 +66,9 @@ SCHEMA: dict[str, Key] = {
                           lo=0.0, lo_closed=True),
     "equilibrium.configuration": Key("int", "-", "1: from the nominal pose; 2: from skewed starts (seed 000 §4.3)",
                                      lo=1, hi=2, lo_closed=True, hi_closed=True),
+    "equilibrium.branch_start_load": Key("float", "N", "configuration 2: found from skewed starts at this load "
+                                         "(or the scene's load if lower) and followed in N up to the scene's load",
+                                         lo=0.0),
     **model_keys(MODEL_NAMES),
     "numerics.conformal_cells_x": Key("int", "-", "elements along the rolling direction per contact", lo=9, hi=401,
                                       lo_closed=True, hi_closed=True),
@@ -91,6 +97,7 @@ DEFAULTS: dict[str, Any] = {
     "roller.mass": 0.0656,
     "roller.inertia": 5.87e-6,
     "equilibrium.configuration": 1,
+    "equilibrium.branch_start_load": 2000.0,
     "models.run": ["cect", "paper", "strip", "strip_s0", "full_slip"],
     "models.references": ["paper", "cect"],
     "models.contrast": ["strip", "strip_s0", "full_slip"],
@@ -164,7 +171,10 @@ def solved(p: dict[str, Any], configuration: int | None = None) -> EquilibriumRe
     if key not in _SOLVED:
         if len(_SOLVED) > 8:
             _SOLVED.clear()
-        _SOLVED[key] = equilibrium(problem_of(p), numerics_of(p), configuration=cfg)
+        if cfg == 2:
+            _SOLVED[key] = configuration_2(problem_of(p), numerics_of(p), p["equilibrium.branch_start_load"])
+        else:
+            _SOLVED[key] = equilibrium(problem_of(p), numerics_of(p), configuration=1)
     return _SOLVED[key]
 
 
