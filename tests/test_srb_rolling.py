@@ -196,3 +196,20 @@ def test_bad_input_is_one_line_exit_2():
         load_scene("srb-rolling", {"load.normal": 5e4})
     limit = float(str(err.value).split("(0, ")[1].split("]")[0])
     load_scene("srb-rolling", {"load.normal": 0.999 * limit})
+
+
+def test_report_section(tmp_path, table2):
+    """The kind's report: Table 2 with the paper's columns beside ours, lateral distributions and maps of both
+    contacts (the equilibrium comes from the memo the fixture filled)."""
+    from femcheck.report.kinds import section
+    from femcheck.runner import run
+
+    rr = run("srb-rolling", {**COARSE, "friction.mu": 0.1}, models=["cect", "paper", "full_slip"])
+    sec = section(rr, tmp_path, "t")
+    table = sec.tables[0]
+    row = {r[0]: r[1:] for r in table.rows}
+    assert row["d_y (um)"][2] == pytest.approx(table2[0.1][2]["d_y"] * 1e6)
+    assert row["d_y (um)"][3] == pytest.approx(6.3) and row["sum f_lat"][4] == pytest.approx(5.8e-2)
+    names = {f.file for f in sec.figures}
+    assert {"t-srb-lateral.png", "t-srb-maps.png"} <= names
+    assert all((tmp_path / n).exists() for n in names)
