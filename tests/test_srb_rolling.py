@@ -213,3 +213,17 @@ def test_report_section(tmp_path, table2):
     names = {f.file for f in sec.figures}
     assert {"t-srb-lateral.png", "t-srb-maps.png"} <= names
     assert all((tmp_path / n).exists() for n in names)
+
+
+@pytest.mark.slow
+def test_branch_end_is_reported():
+    """Natural continuation (Fig. 17): configuration 1 at mu = 0.3 followed down from 3.5 kN ends at its fold
+    (between 3.1 and 3.3 kN on 41 x 81, found by the sweep) with the end load reported, d_y growing as N drops
+    (item 13: d_y(config 1) decreases with N)."""
+    from femcheck.cect.roller_sweep import Branch, trace
+
+    pr = kind.problem_of(_params(**{"friction.mu": 0.3}))
+    out_ = trace(Branch(pr, 1, 3500.0, 2500.0, 250.0, 125.0, Numerics(41, 81)))
+    assert out_["end"] is not None and 3100.0 <= out_["end"] <= 3300.0 and "ends between" in out_["status"]
+    dy = [p["d_y"] for p in out_["points"]]
+    assert len(dy) >= 2 and all(b > a for a, b in zip(dy, dy[1:]))
