@@ -18,7 +18,10 @@ Method:
   the equilibrium from the previous one (warm start and its Jacobian).
 - Configurations (spec §6, paper §4.3): 1 from the nominal start; 2 from skewed starts (CONFIG2_STARTS: both
   skew signs, |gamma| 2 and 4 mrad with a tilt and a larger axial offset) whose converged state must differ from configuration 1 (by more than 0.5 mrad in skew): when
-  no such state is found the result says so (``status`` 2, ``success`` False), never a silent fallback.
+  no such state is found the result says so (``status`` 2, ``success`` False), never a silent fallback. A skewed
+  start at a load where both configurations exist can also land on the unstable middle branch between the two
+  folds (4 kN, mu = 0.3: skew 1.1 mrad instead of Fig. 19's 4 mrad); the scene therefore follows configuration 2
+  from a low load (:func:`femcheck.cect.roller_sweep.configuration_2`).
 
 Results as scipy.optimize: :class:`EquilibriumResult` (``success``, ``status``, ``message``, ``nit``, the
 residual per component, the state). Non-convergence of the Newton loop gives status 1 (not converged) with the
