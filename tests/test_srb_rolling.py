@@ -149,7 +149,8 @@ def test_configuration_2_at_low_load_high_friction():
 def test_configuration_2_absent_is_reported():
     """At 5.5 kN with mu = 0.3 configuration 2 does not exist (its branch folds near 5.1 kN on 41 x 81): status
     2 with the reason, the cect model skipped, not a silent configuration 1."""
-    sc = load_scene("srb-rolling", {**COARSE, "friction.mu": 0.3, "equilibrium.configuration": 2})
+    sc = load_scene("srb-rolling", {**COARSE, "friction.mu": 0.3, "equilibrium.configuration": 2,
+                                    "equilibrium.branch_step": 1500.0})
     r = kind.solved(sc.params)
     assert r.status == 2 and not r.success and "not found" in r.message
     res = kind.cect(sc)

@@ -10,7 +10,8 @@ Method:
   speed columns reuse the base normal solutions (the gap does not depend on the speeds).
 - Between full Jacobians, Broyden's (good) rank-one update; a full Jacobian is recomputed when a step reduces the
   scaled residual by less than half. Backtracking: the step is halved until the largest scaled residual
-  decreases (at most ``max_halvings``); a step that pushes a contact out of its window counts as a failure.
+  decreases (at most ``max_halvings``); a step that pushes a contact out of its window, or to a state whose
+  contact solve does not converge, counts as a failed trial.
 - Grids fixed within an iteration, re-centred on the pressure centres between iterations (on the cell lattice,
   :class:`femcheck.cect.roller_state.GridSpec`).
 - Load: the approach delta of the inner ring (spec §2.2) is solved by a secant on log N_I versus log delta so that
@@ -156,8 +157,8 @@ def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarra
                 if trial.norm < state.norm:
                     new = trial
                     break
-            except GridTooSmall:
-                pass
+            except (GridTooSmall, ConvergenceError):      # a contact outside its window, or a trial state
+                pass                                        # its solver cannot handle: a failed trial, halve
             lam *= 0.5
         count.history.append({"delta": delta, "norm": state.norm, "lambda": lam if new is not None else 0.0,
                               "jacobian": "fd" if fresh else "broyden"})
@@ -184,7 +185,7 @@ def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarra
 
 def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarray | None = None,
                 delta0: float | None = None, configuration: int = 1, load_rtol: float = 1e-4,
-                max_secant: int = 12, max_iter: int = 12) -> EquilibriumResult:
+                max_secant: int = 12, max_iter: int = 12, max_halvings: int = 6) -> EquilibriumResult:
     """The roller equilibrium with the inner normal force equal to ``problem.load`` (module docstring).
 
     ``x0``/``delta0``: a start (continuation); default the nominal start (configuration 1) or the skewed starts
@@ -196,7 +197,7 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
     xn, dn = nominal_start(problem)
     if configuration == 1 or x0 is not None:
         return _at_load(problem, num, xn if x0 is None else x0, dn if delta0 is None else delta0, load_rtol,
-                        max_secant, max_iter, configuration, t0)
+                        max_secant, max_iter, configuration, t0, max_halvings)
     ref = _at_load(problem, num, xn, dn, load_rtol, max_secant, max_iter, 1, t0)
     base, d0 = (ref.x, ref.approach) if ref.success else (xn, dn)
     tried = []
@@ -215,7 +216,8 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
                    % (len(tried), "returned to configuration 1" if back else "did not converge"))
 
 
-def _at_load(problem, num, x0, delta0, load_rtol, max_secant, max_iter, configuration, t0) -> EquilibriumResult:
+def _at_load(problem, num, x0, delta0, load_rtol, max_secant, max_iter, configuration, t0,
+             max_halvings: int = 6) -> EquilibriumResult:
     count = _Counter()
     grids = GridSpec.of(problem, num)
     N = problem.load
@@ -225,10 +227,13 @@ def _at_load(problem, num, x0, delta0, load_rtol, max_secant, max_iter, configur
     for _ in range(max_secant):
         try:
             state, J, grids, converged = newton(problem, num, grids, x, delta, warm=state, J0=J, max_iter=max_iter,
-                                                count=count)
+                                                max_halvings=max_halvings, count=count)
         except GridTooSmall as err:
             return _result(None, False, 1, f"a contact left its window ({', '.join(err.edges)})", count, grids,
                            delta, configuration, t0, x)
+        except ConvergenceError as err:
+            return _result(None, False, 1, f"a contact solve failed ({err})", count, grids, delta, configuration,
+                           t0, x)
         if not converged:
             break
         NI = state.inner_load

@@ -69,6 +69,8 @@ SCHEMA: dict[str, Key] = {
     "equilibrium.branch_start_load": Key("float", "N", "configuration 2: found from skewed starts at this load "
                                          "(or the scene's load if lower) and followed in N up to the scene's load",
                                          lo=0.0),
+    "equilibrium.branch_step": Key("float", "N", "configuration 2: load step of the continuation (halved at "
+                                   "failure down to 62.5 N)", lo=62.5, lo_closed=True),
     **model_keys(MODEL_NAMES),
     "numerics.conformal_cells_x": Key("int", "-", "elements along the rolling direction per contact", lo=9, hi=401,
                                       lo_closed=True, hi_closed=True),
@@ -98,6 +100,7 @@ DEFAULTS: dict[str, Any] = {
     "roller.inertia": 5.87e-6,
     "equilibrium.configuration": 1,
     "equilibrium.branch_start_load": 2000.0,
+    "equilibrium.branch_step": 250.0,
     "models.run": ["cect", "paper", "strip", "strip_s0", "full_slip"],
     "models.references": ["paper", "cect"],
     "models.contrast": ["strip", "strip_s0", "full_slip"],
@@ -172,7 +175,8 @@ def solved(p: dict[str, Any], configuration: int | None = None) -> EquilibriumRe
         if len(_SOLVED) > 8:
             _SOLVED.clear()
         if cfg == 2:
-            _SOLVED[key] = configuration_2(problem_of(p), numerics_of(p), p["equilibrium.branch_start_load"])
+            _SOLVED[key] = configuration_2(problem_of(p), numerics_of(p), p["equilibrium.branch_start_load"],
+                                           p["equilibrium.branch_step"])
         else:
             _SOLVED[key] = equilibrium(problem_of(p), numerics_of(p), configuration=1)
     return _SOLVED[key]
