@@ -17,7 +17,9 @@ Models:
   at the nominal contact centres / at the CECT pressure-centre offset s0 (spec §4.1, check 12): contrasts.
 - ``full_slip``: Table 2's full-slip column: p_t = -mu p_n w/|w| with the CECT pressure and rigid slip at the CECT
   equilibrium (spec §4.4): a contrast (not an equilibrium).
-The frictional FE reference (``fem``, spec §8.2 at the CECT pose) is not wired yet.
+- ``fem`` (opt-in: ``--models fem``; ~1 min and ~4 GB): the frictional FE of :mod:`femcheck.fem.srb_rolling` at the
+  CECT pose with the speeds re-balanced for free rolling and each contact held at N (not a full FE equilibrium;
+  one coarse level of 11 x 21 cells, no certificate): a contrast with bands.
 
 Quantities (Table 2's signs and normalisation, :mod:`femcheck.problems._srb_rolling_out`): ``f_x_inner``,
 ``f_x_outer``, ``f_lat_inner``, ``f_lat_outer``, ``f_lat_sum`` (-, F/(mu N)), ``d_y`` (m), ``tilt``, ``skew``
@@ -44,7 +46,7 @@ from ..result import ModelResult
 from ..scene import Key, Scene, elastic, material_keys, model_keys, tolerance_key
 from . import _srb_rolling_out as out
 
-MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip")
+MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem")
 TABLE_2_QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y")
 
 SCHEMA: dict[str, Key] = {
@@ -87,6 +89,14 @@ SCHEMA: dict[str, Key] = {
                                     hi_closed=True),
     "numerics.strip_count": Key("int", "-", "strips of the H+C models", lo=10, hi=5000, lo_closed=True,
                                 hi_closed=True),
+    "numerics.fem_cells_x": Key("int", "-", "fem: cells along x per contact (common dx)", lo=5, hi=61,
+                                lo_closed=True, hi_closed=True),
+    "numerics.fem_cells_s": Key("int", "-", "fem: cells along s per contact (common ds)", lo=5, hi=121,
+                                lo_closed=True, hi_closed=True),
+    "numerics.fem_h_contact": Key("float", "dx", "fem: element size at the contact line / dx", lo=0.1, hi=2.0,
+                                  hi_closed=True),
+    "numerics.fem_grading": Key("float", "-", "fem: mesh grading away from the contact", lo=0.05, hi=1.0,
+                                hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
 }
@@ -112,10 +122,16 @@ DEFAULTS: dict[str, Any] = {
     "numerics.variable_dq": True,
     "numerics.equilibrium_tol": 1e-5,
     "numerics.strip_count": 400,
+    "numerics.fem_cells_x": 11,
+    "numerics.fem_cells_s": 21,
+    "numerics.fem_h_contact": 0.7,
+    "numerics.fem_grading": 0.4,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal", "kinematics.inner_ring_speed")
-DEPENDS: dict[str, dict] = {}
+# fem: cached (one solve ~1 min, ~4 GB on 11 x 21 cells), not a stored reference: one coarse level, no certificate
+DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "materials.", "load.", "friction.", "kinematics.",
+                                               "roller.", "equilibrium.", "numerics."), "reference": False}}
 
 
 def bearing(p: dict[str, Any]) -> sb.BearingGeometry:
@@ -283,8 +299,27 @@ def full_slip(scene: Scene, progress=None) -> ModelResult:
                                                          "iterations": 0, "residual": 0.0})
 
 
+def fem(scene: Scene, progress=None) -> ModelResult:
+    """The frictional FE (FE compliances of the whole roller and two ring segments, the FE side's own Coulomb
+    solver) at the CECT equilibrium's pose, speeds re-balanced for free rolling (:mod:`._srb_rolling_fem`)."""
+    from ..fem.rolling_compliance import MeshSettings
+    from . import _srb_rolling_fem
+
+    p = scene.params
+    r = solved(p)
+    if r.status != 0:
+        return _not_found("fem", r)
+    mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"], 2e-3, 1, 2)
+    o = _srb_rolling_fem.at_cect_pose(p, r, p["numerics.fem_cells_x"], p["numerics.fem_cells_s"], mesh, progress)
+    stats = {**o["stats"], "solver": "FE compliances (P2, PARDISO/LU) + 3D Coulomb semi-smooth Newton "
+                                     "(solvers/coulomb3d), speeds by Newton",
+             "certificates": {k: {"value": v, "finest": v, "order": None, "error_estimate": None, "certified": False,
+                                  "note": "one FE level: no refinement study"} for k, v in o["quantities"].items()}}
+    return ModelResult("fem", quantities=o["quantities"], stats=stats)
+
+
 MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "paper": paper, "strip": strip,
-                                                 "strip_s0": strip_s0, "full_slip": full_slip}
+                                                 "strip_s0": strip_s0, "full_slip": full_slip, "fem": fem}
 
 
 def load_of(scene: Scene) -> float:
