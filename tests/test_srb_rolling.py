@@ -210,7 +210,7 @@ def test_report_section(tmp_path, table2):
     table = sec.tables[0]
     row = {r[0]: r[1:] for r in table.rows}
     assert row["d_y (um)"][2] == pytest.approx(table2[0.1][2]["d_y"] * 1e6)
-    assert row["d_y (um)"][3] == pytest.approx(6.3) and row["sum f_lat"][4] == pytest.approx(5.8e-2)
+    assert row["d_y (um)"][3] == pytest.approx(6.3) and row["sum f_lat"][5] == pytest.approx(5.8e-2)
     names = {f.file for f in sec.figures}
     assert {"t-srb-lateral.png", "t-srb-maps.png"} <= names
     assert all((tmp_path / n).exists() for n in names)

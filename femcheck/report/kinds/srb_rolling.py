@@ -35,7 +35,8 @@ def _table(run: RunResult) -> Table:
     paper = run.models.get("paper")
     pst = paper.stats if paper is not None and paper.status == "ok" else {}
     cols = [("full slip", _q(run, "full_slip")), ("full slip (paper)", pst.get("full_slip", {})),
-            ("CECT", _q(run, "cect")), ("CECT (paper)", _q(run, "paper")), ("FEM (paper)", pst.get("fem", {})),
+            ("CECT", _q(run, "cect")), ("CECT (paper)", _q(run, "paper")), ("FE at the CECT pose", _q(run, "fem")),
+            ("FEM (paper)", pst.get("fem", {})),
             ("H+C s0 = 0", _q(run, "strip")), ("H+C s0 = s0_CECT", _q(run, "strip_s0"))]
     rows = []
     for key, label, scale in ROWS:
@@ -45,7 +46,9 @@ def _table(run: RunResult) -> Table:
             f"{run.params.get('equilibrium.configuration', 1)}. f = F/(mu N): f_x along the roller's motion relative "
             "to the inner ring, f_lat towards the bearing mid-plane; d_y the friction-induced axial offset (seed 000 "
             "Table 2's conventions, spec srb-rolling E10/E11). Full slip: p_t = -mu p_n w/|w| with the CECT pressure "
-            "and rigid slip at the CECT equilibrium (not an equilibrium). Blank: not given / not computed.")
+            "and rigid slip at the CECT equilibrium (not an equilibrium). FE at the CECT pose: femcheck's FE compliances and "
+            "Coulomb solver at the CECT tilt, skew and offset, speeds re-balanced, one coarse level (no d_y: not an FE "
+            "equilibrium). Blank: not given / not computed.")
     return Table("Seed 000 Table 2: full slip, CECT and FEM", ["quantity"] + [c for c, _ in cols], rows, note)
 
 
