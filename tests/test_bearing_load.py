@@ -221,6 +221,7 @@ def test_2d_models_refuse_a_multi_row_bearing():
         load_scene("trb-mill-4row", {"models.run": ["rigid_ring", "fem"]})
 
 
+@pytest.mark.slow
 def test_run_rigid_rings_analytic_models_json():
     r = subprocess.run([*CLI, "run", "crb-rigid-rings", "--models", "rigid_ring,integral,condensed", "--json"],
                        capture_output=True, text=True)

@@ -18,6 +18,7 @@ def test_console_entry_point_and_pytest_plugin_declared():
     assert any(e.value == "femcheck.pytest_plugin" for e in entry_points(group="pytest11"))
 
 
+@pytest.mark.slow
 def test_list_and_show():
     r = femcheck("list")
     assert r.returncode == 0 and "hertz-line" in r.stdout
@@ -64,6 +65,7 @@ def test_run_json_solver_stats(run_json):
     assert fem["richardson"]["p_max"]["error_estimate"] >= 0
 
 
+@pytest.mark.slow
 def test_failed_comparison_exits_1():
     r = femcheck("run", "hertz-line", "--models", "analytic,bem", "--set", "tolerances.bem.p_max=1e-9", "--json")
     assert r.returncode == 1
@@ -90,6 +92,7 @@ def test_bad_input_exit_2_one_line_nothing_written(tmp_path, args, key):
     assert not out.exists() and list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_unknown_suite_exit_2(tmp_path):
     r = femcheck("suite", "nonexistent", "--out", str(tmp_path / "x"))
     assert r.returncode == 2 and "suite" in r.stderr and not (tmp_path / "x").exists()

@@ -54,6 +54,7 @@ def test_version():
     assert r.returncode == 0 and r.stdout.strip() == f"femcheck {femcheck.__version__}"
 
 
+@pytest.mark.slow
 def test_models_replace_models_run_before_validation():
     # layer-line lists uncoated Hertz, which needs an elastic substrate: --models without it must run
     r = femcheck_cli("run", "layer-line", "--set", "materials.substrate.rigid=true", "--models", "thin_layer,bem",

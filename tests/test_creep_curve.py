@@ -43,6 +43,7 @@ def test_exact_tends_to_linear_theory_at_small_creepage():
                                                                    rel=0.005)
 
 
+@pytest.mark.slow
 def test_report_shows_traction_and_adhesion_areas(tmp_path, combined):
     # the report of a friction scene carries the traction profile and the adhesion/slip map of the exact theory
     from femcheck.report.html import write_report
@@ -59,6 +60,7 @@ def test_report_shows_traction_and_adhesion_areas(tmp_path, combined):
     assert ex.fields["adhesion_map"][loaded].mean() == pytest.approx(ex.quantities["adhesion_fraction"], abs=0.02)
 
 
+@pytest.mark.slow
 def test_stress_case_counts_a_skipped_model_as_not_applicable():
     # a rigid body couples normal and tangential problems: linear theory and FASTSIM say they do not apply
     # (skipped); the stress sweep must not report that as a failure, while the exact model still runs

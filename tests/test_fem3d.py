@@ -191,6 +191,7 @@ def _level0(**kw):
     return fp.solve_level(gap, block, 1000.0, hz.semi_axis_x, hz.semi_axis_x, 0, fp.FEMPointSettings(**kw))
 
 
+@pytest.mark.slow
 def test_direct_and_amg_solvers_give_the_same_contact():
     direct, amg = _level0(solver="direct"), _level0(solver="amg")    # 6k DOFs each
     assert direct.p_max == pytest.approx(amg.p_max, rel=1e-8)

@@ -137,6 +137,7 @@ def test_bad_input_is_one_line_exit_2():
         load_scene("groove-rolling", {"load.normal": 1.001 * limit})
 
 
+@pytest.mark.slow
 def test_dissimilar_bodies_couple_and_still_roll_freely():
     # a rigid crowned body on a steel ring (K = -0.2): normal and tangential problems couple (Panagiotopoulos
     # process under load control in every free-rolling solve); the load and F_x = 0 are still met. The

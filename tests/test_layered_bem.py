@@ -123,6 +123,7 @@ def test_strip_coefficients_match_fourier_quadrature(E1, nu1, E2, nu2, h_over_dx
         assert (layer_part[i] - layer_part[0]) == pytest.approx(ref, abs=3e-4 * scale)
 
 
+@pytest.mark.slow
 def test_rectangle_coefficients_match_polar_quadrature():
     dx, n = 1e-5, 33
     s = LayeredSolid(20e9, 0.3, 1.0 * dx, 200e9, 0.3)

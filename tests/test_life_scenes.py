@@ -51,6 +51,7 @@ def test_life_is_skipped_unless_asked():
     assert "risk_integral" not in res.models["bem"].quantities and "life" not in res.models["bem"].stats
 
 
+@pytest.mark.slow
 def test_point_life_graded_and_infinite_above_the_fatigue_limit():
     res = femcheck.run("life-point")
     assert res.passed
@@ -102,6 +103,7 @@ def test_depth_zero_indent_has_life_ratio_exactly_one():
     assert q["risk_integral"] == q["risk_integral_smooth"]
 
 
+@pytest.mark.slow
 def test_indent_life_and_report_section(tmp_path):
     res = femcheck.run("indent-life", COARSE_INDENT, models=["bem"])
     bem = res.models["bem"]

@@ -48,6 +48,7 @@ def test_every_stored_model_keys_its_adapter_and_scene_code(kind):
         assert prob.__name__ in c and "femcheck.scene" in c and "femcheck.result" in c
 
 
+@pytest.mark.slow
 def test_key_changes_with_code_below_the_model_and_only_there(package_copy):
     roots = ("femcheck.fem.srb_conformal",)
     before = provenance.code_digest(roots)
@@ -60,6 +61,7 @@ def test_key_changes_with_code_below_the_model_and_only_there(package_copy):
     assert provenance.code_digest(roots) != before
 
 
+@pytest.mark.slow
 def test_key_changes_with_a_new_import(package_copy):
     roots = ("femcheck.fem.point_contact",)
     before = set(provenance.closure(roots))

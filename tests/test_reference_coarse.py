@@ -13,7 +13,7 @@ STORED = [
     pytest.param("layer-rigid", "fem", id="layer-rigid"),
     pytest.param("layer-line", "fem", id="layer-line"),
     pytest.param("coated-roller", "fem", id="coated-roller", marks=pytest.mark.slow),   # 8 s
-    pytest.param("layer-point", "fem", id="layer-point"),
+    pytest.param("layer-point", "fem", id="layer-point", marks=pytest.mark.slow),
     pytest.param("hertz-point", "fem", id="hertz-point", marks=pytest.mark.slow),       # 11 s
     pytest.param("srb-normal", "fem", id="srb-normal-fem", marks=pytest.mark.slow),
     pytest.param("srb-normal", "fem_conformal", id="srb-normal-fem_conformal", marks=pytest.mark.slow),
@@ -22,10 +22,11 @@ STORED = [
 # references whose kind declares no coarsest-level overrides: (scene, model, overrides, numbers compared at least)
 OTHERS = [
     pytest.param("crb-rigid-rings", "fem", {"numerics.fem_levels": 1}, 3, id="crb-rigid-rings"),
-    pytest.param("crb-elastic-rings", "fem", {"numerics.fem_levels": 1}, 3, id="crb-elastic-rings"),
+    pytest.param("crb-elastic-rings", "fem", {"numerics.fem_levels": 1}, 3, id="crb-elastic-rings",
+                 marks=pytest.mark.slow),
     pytest.param("crb-housing-arc", "fem", {"numerics.fem_levels": 1}, 3, id="crb-housing-arc",
                  marks=pytest.mark.slow),
-    pytest.param("ehl-smooth", "ehl", {}, 1, id="ehl-smooth"),     # the whole model (three grids): 3 s
+    pytest.param("ehl-smooth", "ehl", {}, 1, id="ehl-smooth", marks=pytest.mark.slow),     # the whole model (three grids): 3 s
 ]
 
 

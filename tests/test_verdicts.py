@@ -125,9 +125,12 @@ def test_scene_keys_refuse_contrast_reference_and_unknown_tolerance_model():
     assert load_scene("hertz-line", {"tolerances.fem@finest.p_max": 0.1})["tolerances.fem@finest.p_max"] == 0.1
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in ("hertz-line", "indent-life") else n
-                                  for n in sorted(builtin_scene_files())])    # hertz-line: its 2D FE is solved;
-                                                                              # indent-life: pseudo-transient, 80 s
+# slow: hertz-line (its 2D FE is solved), indent-life (pseudo-transient, 80 s), srb-rolling (6 s), hertz-point (1 s)
+SLOW_SCENES = ("hertz-line", "indent-life", "srb-rolling", "hertz-point")
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_SCENES else n
+                                  for n in sorted(builtin_scene_files())])
 def test_builtin_scene_is_fully_graded(name, monkeypatch):
     """Every comparison of every built-in scene carries a tolerance (or is a contrast judged by its band), and
     no candidate model is 'not valid here'. Stored FE references stand in for the FE solves."""
