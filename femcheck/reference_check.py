@@ -14,6 +14,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from . import references
 from .problems import problem
 from .result import ModelResult
@@ -60,12 +62,26 @@ def level_tables(stats: dict[str, Any]) -> dict[str, list[dict]]:
     return out
 
 
-def compare_coarse(stored: ModelResult, fresh: ModelResult, rtol: float) -> tuple[list, list[str]]:
-    """(compared, mismatches) between the first level of every table of ``stored`` and of ``fresh``."""
+def compare_coarse(stored: ModelResult, fresh: ModelResult, rtol: float,
+                   whole: bool = False) -> tuple[list, list[str]]:
+    """(compared, mismatches) between the first level of every table of ``stored`` and of ``fresh``; with
+    ``whole`` (the re-solve was the whole model, e.g. a single-level reference) every finite quantity too."""
     compared, bad = [], []
+    if whole:
+        for q, x in stored.quantities.items():
+            y = fresh.quantities.get(q)
+            if y is None:
+                bad.append(f"quantities.{q}: missing from the re-solve")
+            elif np.isfinite(x) and np.isfinite(y):
+                compared.append(("quantities", q, float(x), float(y)))
+                if abs(y - x) > rtol * max(abs(x), 1e-300):
+                    bad.append(f"quantities.{q}: stored {x:.10g}, re-solved {y:.10g} "
+                               f"(relative {abs(y / x - 1) if x else float('inf'):.2e} > {rtol:g})")
+            elif not (x == y):            # inf (an infinite life) must stay inf
+                bad.append(f"quantities.{q}: stored {x}, re-solved {y}")
     old, new = level_tables(stored.stats), level_tables(fresh.stats)
     if set(old) != set(new):
-        return compared, [f"level tables differ: stored {sorted(old)}, re-solved {sorted(new)}"]
+        return compared, bad + [f"level tables differ: stored {sorted(old)}, re-solved {sorted(new)}"]
     for table in sorted(old):
         a, b = old[table][0], new[table][0]
         for q in COMPARED:
@@ -81,6 +97,8 @@ def compare_coarse(stored: ModelResult, fresh: ModelResult, rtol: float) -> tupl
                            f"(relative {abs(y / x - 1) if x else float('inf'):.2e} > {rtol:g})")
     if not compared:
         bad.append("no level-0 quantity to compare")
+    elif whole and bad == ["no level-0 quantity to compare"]:
+        bad = []
     return compared, bad
 
 
@@ -97,12 +115,13 @@ def check(scene_name: str, model: str, rtol: float = 1e-6, stored: ModelResult |
     out.stored = stored if stored is not None else references.load(sc.kind, model, k)
     if out.stored is None:
         return out
-    coarse = sc.with_overrides(dep.get("coarse", {}) if coarse is None else coarse)
-    out.fresh = run_model(coarse, model, use_cache=False)
+    overrides = dep.get("coarse", {}) if coarse is None else coarse
+    coarse_scene = sc.with_overrides(overrides) if overrides else sc
+    out.fresh = run_model(coarse_scene, model, use_cache=False)
     if out.fresh.status != "ok":
         out.mismatches.append(f"the coarse re-solve {out.fresh.status}: {out.fresh.error}")
         return out
-    out.compared, out.mismatches = compare_coarse(out.stored, out.fresh, rtol)
+    out.compared, out.mismatches = compare_coarse(out.stored, out.fresh, rtol, whole=not overrides)
     return out
 
 

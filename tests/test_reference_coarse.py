@@ -26,7 +26,10 @@ OTHERS = [
                  marks=pytest.mark.slow),
     pytest.param("crb-housing-arc", "fem", {"numerics.fem_levels": 1}, 3, id="crb-housing-arc",
                  marks=pytest.mark.slow),
-    pytest.param("ehl-smooth", "ehl", {}, 1, id="ehl-smooth", marks=pytest.mark.slow),     # the whole model (three grids): 3 s
+    pytest.param("ehl-smooth", "ehl", {}, 1, id="ehl-smooth", marks=pytest.mark.slow),
+    # single-level references: the whole model is re-solved (about 100 s and 25 s)
+    pytest.param("ehl-indent", "ehl", {}, 10, id="ehl-indent", marks=pytest.mark.slow),
+    pytest.param("indent-life", "bem_transient", {}, 5, id="indent-life", marks=pytest.mark.slow),     # the whole model (three grids): 3 s
 ]
 
 
