@@ -250,3 +250,15 @@ def test_dissimilar_exact_theory_and_fe_agree(scene, pair):
     q = "creep_force_x" if scene == "carter-2d" else "shift"
     err = fe.stats["certificates"][q]["error_estimate"]
     assert fe.quantities[q] == pytest.approx(ex.quantities[q], rel=err + 0.01)
+
+
+@pytest.mark.slow
+def test_steel_on_aluminium_creep_force_with_finer_fe_meshes():
+    # Issue 12 done-when: exact and FE within 2 % on the dissimilar creep force. At carter-2d's xi = 0.005 the
+    # steel-on-aluminium creep force is a near cancellation (kappa p0 = -1.09 xi): the default FE meshes (0.1 to
+    # 0.025 a) give +2.3 %; with meshes 0.05 to 0.0125 a the FE is within 0.54 % of the exact theory (its levels
+    # are still not in the asymptotic range, so the FE value stays uncertified). 47 s.
+    over = {"materials.block.E": 70e9, "materials.block.nu": 0.33, "numerics.fem_h_contact": 0.05}
+    res = femcheck.run("carter-2d", over, models=["exact", "fem"])
+    ex, fe = res.models["exact"], res.models["fem"]
+    assert fe.quantities["creep_force_x"] == pytest.approx(ex.quantities["creep_force_x"], rel=0.02)
