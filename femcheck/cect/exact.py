@@ -62,9 +62,16 @@ Gap = Callable[[np.ndarray, np.ndarray], np.ndarray]
 def lag_table(component: str, g: Grid, constants: CombinedConstants) -> np.ndarray:
     """A_ij at all lags of grid ``g``: T[kx + nx - 1, ky + ny - 1] = A_ij(kx dx, ky dy) for
     kx in [-(nx-1), nx] (one extra lag downstream, needed by the rolling difference), ky in [-(ny-1), ny-1]."""
+    tx, ty = lags(g)
+    return influence(component, tx, ty, g.dx, g.dy, constants)
+
+
+def lags(g: Grid) -> tuple[np.ndarray, np.ndarray]:
+    """The lags (m) of :func:`lag_table` as broadcastable columns / rows: kx dx for kx in [-(nx-1), nx], ky dy
+    for ky in [-(ny-1), ny-1]."""
     kx = np.arange(-(g.nx - 1), g.nx + 1) * g.dx
     ky = np.arange(-(g.ny - 1), g.ny) * g.dy
-    return influence(component, kx[:, None], ky[None, :], g.dx, g.dy, constants)
+    return kx[:, None], ky[None, :]
 
 
 def dense_operator(g: Grid, cells: tuple[np.ndarray, np.ndarray], constants: CombinedConstants,
@@ -73,6 +80,14 @@ def dense_operator(g: Grid, cells: tuple[np.ndarray, np.ndarray], constants: Com
     (rolling: (u - u')/dx, 1/Pa) at the element centres ``cells`` = (ix, iy) due to unit tractions on the same
     elements. ``rows`` / ``cols`` are component strings, e.g. "xy" / "xy" for the 2C x 2C tangential block,
     "xy" / "z" for the coupling of pressure into tangential displacement. Blocks ordered component-major."""
+    return gather_blocks(g, cells, rows, cols, rolling, lambda i, j: lag_table(i + j, g, constants))
+
+
+def gather_blocks(g: Grid, cells: tuple[np.ndarray, np.ndarray], rows: str, cols: str, rolling: bool,
+                  table) -> np.ndarray:
+    """Dense component-major block matrix on the elements ``cells`` = (ix, iy) gathered from lag tables:
+    ``table(i, j)`` is the (2 nx, 2 ny - 1) table of component pair (i, j) at lags (k - nx + 1) dx, (l - ny + 1) dy;
+    ``rolling`` takes the difference quotient (u(x_I) - u(x_I + dx))/dx (seed 000 eq. 19 with dq = dx)."""
     ix, iy = cells
     dix = ix[:, None] - ix[None, :] + g.nx - 1
     diy = iy[:, None] - iy[None, :] + g.ny - 1
@@ -80,10 +95,10 @@ def dense_operator(g: Grid, cells: tuple[np.ndarray, np.ndarray], constants: Com
     for i in rows:
         row = []
         for j in cols:
-            t = lag_table(i + j, g, constants)
+            t = table(i, j)
             a = t[dix, diy]
             if rolling:
-                a = (a - t[dix + 1, diy]) / g.dx    # u(x_I) - u(x_I + dx): seed 000 eq. 19 with dq = dx
+                a = (a - t[dix + 1, diy]) / g.dx
             row.append(a)
         blocks.append(row)
     return np.block(blocks)

@@ -34,6 +34,7 @@ from scipy import fft
 from ..bem.convolution import DCFFT
 from ..bem.halfspace import Grid
 from ..errors import InputError
+from .exact import gather_blocks, lags
 from .influence import CombinedConstants, influence
 
 INFLUENCE_OPTIONS = ("halfspace", "blanco", "rotated_response")
@@ -137,19 +138,6 @@ def dense_block(g: Grid, cells: tuple[np.ndarray, np.ndarray], constants: Combin
                 rolling: bool, option: str = "halfspace", radius: float | None = None) -> np.ndarray:
     """Dense matrix of the block on the elements ``cells`` = (ix, is), component-major (all x rows, then all s
     rows ...), the counterpart of :func:`femcheck.cect.exact.dense_operator` for the corrected coefficients."""
-    ix, iy = cells
-    kx = np.arange(-(g.nx - 1), g.nx + 1) * g.dx
-    ky = np.arange(-(g.ny - 1), g.ny) * g.dy
-    dix = ix[:, None] - ix[None, :] + g.nx - 1
-    diy = iy[:, None] - iy[None, :] + g.ny - 1
-    blocks = []
-    for i in rows:
-        row = []
-        for j in cols:
-            t = kernel(i, j, kx[:, None], ky[None, :], g.dx, g.dy, constants, option, radius)
-            a = t[dix, diy]
-            if rolling:
-                a = (a - t[dix + 1, diy]) / g.dx
-            row.append(a)
-        blocks.append(row)
-    return np.block(blocks)
+    tx, ty = lags(g)
+    return gather_blocks(g, cells, rows, cols, rolling,
+                         lambda i, j: kernel(i, j, tx, ty, g.dx, g.dy, constants, option, radius))
