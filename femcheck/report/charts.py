@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .plots import _save, plt
+from .plots import plt, save_figure
 
 VERDICT_COLOUR = {"valid": "tab:green", "contrast": "0.55", "not valid here": "tab:red",
                   "reference uncertified": "tab:orange", "ungraded": "tab:purple"}
@@ -41,7 +41,7 @@ def cost_error(rows, path: Path) -> str | None:
     ax.set_title("Cost against error of every model of every scene", fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def time_error(rows: list[dict], path: Path, title: str) -> str:
@@ -66,7 +66,7 @@ def time_error(rows: list[dict], path: Path, title: str) -> str:
         ax.legend(fontsize=7)
     axes[0].set_ylabel("relative error")
     fig.suptitle(title)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _edges(values: tuple[float, ...], log: bool) -> np.ndarray:
@@ -107,4 +107,4 @@ def validity_heatmap(vmap, comparison: tuple[str, str, str], path: Path) -> str:
     model, ref, q = comparison
     tol_txt = f"tolerance {tol:.3g} (white: within)" if tol is not None else "no tolerance set"
     ax.set_title(f"{vmap.scene}: {model} vs {ref}, {q}\n{tol_txt}; x: no value", fontsize=9)
-    return _save(fig, path)
+    return save_figure(fig, path)

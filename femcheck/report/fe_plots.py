@@ -11,7 +11,7 @@ from matplotlib.tri import Triangulation
 
 from ..compare import is_singular
 from ..result import ModelResult, RunResult
-from .plots import _save, plt
+from .plots import plt, save_figure
 
 
 def fem_mesh(run: RunResult, path: Path) -> str | None:
@@ -34,7 +34,7 @@ def fem_mesh(run: RunResult, path: Path) -> str | None:
     ax.set_ylabel("y (mm)")
     ax.set_title(f"{run.scene}: FE mesh near the contact (finest level, symmetric half)", fontsize=9)
     ax.legend(loc="lower right")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def level_sets(m: ModelResult) -> list[tuple[str, list[dict], dict[str, dict]]]:
@@ -111,5 +111,5 @@ def convergence(run: RunResult, path: Path) -> list[str]:
                 ax.plot([], [], "x", color="0.3", label="x: error estimate of the reported value")
                 ax.legend(fontsize=6.5)
             p = path.with_name(f"{path.stem}-{name}{'-' + part if part else ''}{path.suffix}")
-            out.append(_save(fig, p))
+            out.append(save_figure(fig, p))
     return out

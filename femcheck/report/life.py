@@ -13,6 +13,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from ..result import RunResult  # noqa: E402
 from .kinds import Figure, KindSection, Table  # noqa: E402
+from .plots import save_figure  # noqa: E402
 
 
 def _models(run: RunResult) -> dict:
@@ -80,10 +81,7 @@ def _section_figure(run: RunResult, models: dict, path: Path) -> str | None:
         ax.set_title("line contact: history T_S(z) (stressed where right of the limit)", fontsize=9)
         ax.legend(fontsize=8)
     fig.suptitle(run.scene, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
+    return save_figure(fig, path)
 
 
 def _sweep(models: dict, path: Path) -> tuple[Table | None, str | None]:
@@ -106,9 +104,7 @@ def _sweep(models: dict, path: Path) -> tuple[Table | None, str | None]:
     ax.set_ylim(0, 1.05)
     ax.legend(fontsize=8)
     ax.set_title("life ratio against indent size (same slope D/Phi and K)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
     return Table("Life ratio against indent size", ["model", "Phi / a", "dP / p_H", "T_Dmax / T_Smax", "I_D / I_S",
                                                    "L / L_S"], rows,
                  "Pseudo-transient pass, the scene's slope, decay, life constants and window."), path.name

@@ -16,7 +16,8 @@ STYLE = {"analytic": dict(color="k", lw=1.2), "bem": dict(color="tab:blue", ls="
          "finite_line": dict(color="tab:green", marker="+", ms=4, ls="-", lw=0.8)}
 
 
-def _save(fig, path: Path) -> str:
+def save_figure(fig, path: Path) -> str:
+    """Lay out, write (110 dpi) and close ``fig``; the file name for the report."""
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -64,7 +65,7 @@ def _overlay(run: RunResult, path: Path, x_field: str, p_field: str, xlabel: str
     ax.set_title(f"{run.scene}: {title}" + (f" ({part})" if part else ""))
     ax.legend()
     ax.grid(alpha=0.3)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def pressure_overlay(run: RunResult, path: Path) -> list[str]:
@@ -120,7 +121,7 @@ def pressure_map(run: RunResult, path: Path) -> str | None:
     part = parts(run)[0][1]
     ax.set_title(f"{run.scene}: contact pressure ({m.model}" + (f", {part}" if part else "") + "; equal axes)",
                  fontsize=9)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def traction_overlay(run: RunResult, path: Path) -> str | None:
@@ -147,7 +148,7 @@ def traction_overlay(run: RunResult, path: Path) -> str | None:
     ax.set_title(f"{run.scene}: tangential traction")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def adhesion_map(run: RunResult, path: Path) -> str | None:
@@ -163,7 +164,7 @@ def adhesion_map(run: RunResult, path: Path) -> str | None:
     ax.set_xlabel("y (mm)")
     ax.set_ylabel("x, rolling direction (mm)")
     ax.set_title(f"{run.scene}: adhesion (blue) and slip (orange) areas ({m.model}; equal axes)", fontsize=9)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def stress_field(run: RunResult, path: Path) -> str | None:
@@ -186,4 +187,4 @@ def stress_field(run: RunResult, path: Path) -> str | None:
     axes[0].invert_yaxis()
     axes[0].set_ylabel("depth z (mm)")
     fig.suptitle(f"{run.scene}: sub-surface stresses ({m.model})")
-    return _save(fig, path)
+    return save_figure(fig, path)

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ...result import RunResult
-from ..plots import _save, plt
+from ..plots import plt, save_figure
 from . import Figure, KindSection, Table
 
 COLOURS = {"fem": "tab:red", "condensed": "tab:blue", "rigid_ring": "k", "integral": "tab:green"}
@@ -43,7 +43,7 @@ def _polar(run: RunResult, path: Path) -> str | None:
                 ax.plot([s * zone] * 2, [0, q.max()], color=COLOURS.get(name), ls=":", lw=0.8)
     ax.set_title("roller loads (N); dotted: load-zone half-angles")
     ax.legend(loc="upper right", fontsize=7, bbox_to_anchor=(1.15, 1.1))
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _rings(run: RunResult, path: Path) -> str | None:
@@ -80,7 +80,7 @@ def _rings(run: RunResult, path: Path) -> str | None:
     ax.set_aspect("equal")
     ax.set_xlabel("mm")
     ax.set_title(f"FE ring deformation x {scale:.3g} (load downwards)")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _load_table(run: RunResult) -> Table | None:

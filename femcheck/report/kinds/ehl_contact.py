@@ -12,16 +12,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ...result import RunResult  # noqa: E402
+from ..plots import save_figure  # noqa: E402
 from . import Figure, KindSection, Table  # noqa: E402
 
 FILM = ("h_central", "h_min", "H_central_moes", "H_min_moes", "p_max")
-
-
-def _save(fig, path: Path) -> str:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
 
 
 def _film_table(run: RunResult) -> Table | None:
@@ -71,7 +65,7 @@ def _lines(run: RunResult, path: Path) -> str:
         ax2.set_ylim(0, 4 * np.nanmin(h[h > 0]) * 1e9 if (h > 0).any() else None)
         ax.legend(loc="upper left", fontsize=8)
     fig.suptitle(f"{run.scene}: pressure and film along the centre lines")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _maps(run: RunResult, path: Path) -> str:
@@ -91,7 +85,7 @@ def _maps(run: RunResult, path: Path) -> str:
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
     fig.suptitle(f"{run.scene}: maps (rolling along +x)")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _history(run: RunResult, path: Path) -> str:
@@ -108,7 +102,7 @@ def _history(run: RunResult, path: Path) -> str:
     ax.set_ylabel("additional pressure (GPa)")
     ax.set_title(f"{run.scene}: additional pressure while the indent crosses")
     ax.legend(fontsize=8)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def _dp_table(run: RunResult) -> Table:

@@ -12,6 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ...result import RunResult  # noqa: E402
+from ..plots import save_figure  # noqa: E402
 from . import Figure, KindSection, Table  # noqa: E402
 
 ROWS = (("approach", "approach", 1e6, "um"), ("p_max", "p_max", 1e-9, "GPa"),
@@ -55,10 +56,7 @@ def _maps(run: RunResult, path: Path) -> str | None:
         fig.colorbar(cs, ax=axes[1], label="frictional power (W/mm^2)", orientation="horizontal", pad=0.25)
     axes[1].set_xlabel("s along the groove (mm)")
     axes[1].set_ylabel("x, rolling (mm)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
+    return save_figure(fig, path)
 
 
 def _lateral(run: RunResult, path: Path) -> str | None:
@@ -77,10 +75,7 @@ def _lateral(run: RunResult, path: Path) -> str | None:
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
+    return save_figure(fig, path)
 
 
 def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:

@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ...result import RunResult  # noqa: E402
+from ..plots import save_figure  # noqa: E402
 from . import Figure, KindSection, Table  # noqa: E402
 
 ROWS = (("f_x_inner", "f_x,i", 1.0), ("f_x_outer", "f_x,e", 1.0), ("f_lat_inner", "f_lat,i", 1.0),
@@ -77,10 +78,7 @@ def _lateral(run: RunResult, path: Path) -> str | None:
     for ax in axes.ravel():
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
+    return save_figure(fig, path)
 
 
 def _maps(run: RunResult, path: Path) -> str | None:
@@ -97,10 +95,7 @@ def _maps(run: RunResult, path: Path) -> str | None:
         ax.set_ylabel("x, rolling (mm)")
         ax.set_title(f"{c} contact: adhesion (blue) / slip (orange), pressure contours", fontsize=9)
     axes[-1].set_xlabel("s along the groove (mm)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
+    return save_figure(fig, path)
 
 
 def _fig17(path: Path) -> str | None:
@@ -129,10 +124,7 @@ def _fig17(path: Path) -> str | None:
     for ax in axes.ravel():
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path.name
+    return save_figure(fig, path)
 
 
 def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
