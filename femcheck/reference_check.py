@@ -65,40 +65,35 @@ def level_tables(stats: dict[str, Any]) -> dict[str, list[dict]]:
 def compare_coarse(stored: ModelResult, fresh: ModelResult, rtol: float,
                    whole: bool = False) -> tuple[list, list[str]]:
     """(compared, mismatches) between the first level of every table of ``stored`` and of ``fresh``; with
-    ``whole`` (the re-solve was the whole model, e.g. a single-level reference) every finite quantity too."""
+    ``whole`` (the re-solve was the whole model, e.g. a single-level reference) every quantity too (an infinite
+    one, e.g. a life, must stay infinite)."""
     compared, bad = [], []
+
+    def same(table: str, where: str, q: str, x: float, y: float | None) -> None:
+        if y is None:
+            bad.append(f"{where}.{q}: missing from the re-solve")
+        elif not (np.isfinite(x) and np.isfinite(y)):
+            if x != y:
+                bad.append(f"{where}.{q}: stored {x}, re-solved {y}")
+        else:
+            compared.append((table, q, float(x), float(y)))
+            if abs(y - x) > rtol * max(abs(x), 1e-300):
+                bad.append(f"{where}.{q}: stored {x:.10g}, re-solved {y:.10g} "
+                           f"(relative {abs(y / x - 1) if x else float('inf'):.2e} > {rtol:g})")
+
     if whole:
         for q, x in stored.quantities.items():
-            y = fresh.quantities.get(q)
-            if y is None:
-                bad.append(f"quantities.{q}: missing from the re-solve")
-            elif np.isfinite(x) and np.isfinite(y):
-                compared.append(("quantities", q, float(x), float(y)))
-                if abs(y - x) > rtol * max(abs(x), 1e-300):
-                    bad.append(f"quantities.{q}: stored {x:.10g}, re-solved {y:.10g} "
-                               f"(relative {abs(y / x - 1) if x else float('inf'):.2e} > {rtol:g})")
-            elif not (x == y):            # inf (an infinite life) must stay inf
-                bad.append(f"quantities.{q}: stored {x}, re-solved {y}")
+            same("quantities", "quantities", q, x, fresh.quantities.get(q))
     old, new = level_tables(stored.stats), level_tables(fresh.stats)
     if set(old) != set(new):
         return compared, bad + [f"level tables differ: stored {sorted(old)}, re-solved {sorted(new)}"]
     for table in sorted(old):
         a, b = old[table][0], new[table][0]
         for q in COMPARED:
-            if q not in a:
-                continue
-            if q not in b:
-                bad.append(f"{table or 'levels'}[0].{q}: missing from the re-solve")
-                continue
-            x, y = float(a[q]), float(b[q])
-            compared.append((table, q, x, y))
-            if abs(y - x) > rtol * max(abs(x), 1e-300):
-                bad.append(f"{table or 'levels'}[0].{q}: stored {x:.10g}, re-solved {y:.10g} "
-                           f"(relative {abs(y / x - 1) if x else float('inf'):.2e} > {rtol:g})")
+            if q in a:
+                same(table, f"{table or 'levels'}[0]", q, float(a[q]), None if q not in b else float(b[q]))
     if not compared:
         bad.append("no level-0 quantity to compare")
-    elif whole and bad == ["no level-0 quantity to compare"]:
-        bad = []
     return compared, bad
 
 
