@@ -25,7 +25,8 @@ def stored(kind: str, model: str, params: dict) -> ModelResult | None:
 
 def use_stored_references(monkeypatch) -> None:
     """Make runner.run take every stored-reference model (the kind's DEPENDS with reference=True) from the
-    stored files; skip the test when one is missing."""
+    stored files; fail the test when one is missing (a built-in scene ships its references: `femcheck run SCENE`
+    stores them)."""
     plain = runner.run_model
 
     def run_model(scene, model, *args, **kwargs):
@@ -34,7 +35,8 @@ def use_stored_references(monkeypatch) -> None:
             rel = _jsonable({k: v for k, v in scene.params.items() if k.startswith(dep["params"])})
             res = stored(scene.kind, model, rel)
             if res is None:
-                pytest.skip(f"{scene.name}: no stored {model} reference for these parameters")
+                pytest.fail(f"{scene.name}: no stored {model} reference for these parameters; store it with "
+                            f"`femcheck run {scene.name}`")
             return res
         return plain(scene, model, *args, **kwargs)
 
