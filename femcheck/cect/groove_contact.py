@@ -12,8 +12,8 @@ centre and two zero-slip bands (Heathcote slip); the planar theory with Kalker's
 point has no such slip (no spin either: both axes are parallel to Y) and rolls freely at zero creepage.
 
 Reported (SI): ``approach`` the rigid approach (m), ``p_max`` (Pa), ``half_length_s`` half the lateral extent of
-the contact along the groove (m; sub-cell edges of the pressure ridge max_x p(x, s)), ``angle_span`` its angle on
-the groove circle (rad), ``adhesion_fraction``, ``creepage_x`` = w_x(0, 0)/V_ref (Kalker's sign: the body's
+the contact along the groove (m; sub-cell power-law edges of the lateral load distribution,
+:func:`lateral_extent`), ``angle_span`` its angle on the groove circle (rad), ``adhesion_fraction``, ``creepage_x`` = w_x(0, 0)/V_ref (Kalker's sign: the body's
 slip relative to the ring along x), ``spin_moment`` about the normal at the nominal point (N m),
 ``friction_power`` (W), and the body's axle torque sum ((P - C) x t).Y dA (N m; the rolling resistance moment
 that free rolling at F_x = 0 leaves).
@@ -31,7 +31,7 @@ from ..bem.halfspace import grid as planar_grid
 from ..errors import ConvergenceError, InputError
 from ..geometry.conformal_surface import DevelopedGrid, developed_grid, rolling_speeds, undeformed_distance
 from ..geometry.groove import Y, Z, GrooveRolling
-from ..qoi import contact_edge
+from ..qoi import edges
 from .conformal import GridTooSmall, resultants, solve_conformal, solve_normal_conformal
 from .exact import solve_contact
 from .influence import CombinedConstants
@@ -63,9 +63,18 @@ class GrooveSolution:
     stats: dict = field(default_factory=dict)
 
 
-def _lateral_extent(s: np.ndarray, pressure: np.ndarray) -> tuple[float, float]:
-    ridge = pressure.max(axis=0)
-    return -contact_edge(-s[::-1], ridge[::-1]), contact_edge(s, ridge)
+def lateral_extent(s: np.ndarray, pressure: np.ndarray) -> tuple[float, float]:
+    """(left, right) lateral edges (m) of a pressure field (nx, ns) on cells along s: the power-law edges of
+    :func:`femcheck.qoi.edges` (exponent fitted, no Hertz shape) of the lateral load distribution
+    N*(s) ~ sum_x p(x, s), about the middle of its loaded cells. N* averages over the rolling direction, so it
+    scatters less from level to level than the pressure ridge max_x p (FE levels 11 x 21 -> 23 x 43 of the
+    default scene: 8.809, 8.817, 8.825 mm against 8.903, 8.961, 8.860 mm). Every model of the groove-rolling
+    scene goes through it (like with like)."""
+    load = pressure.sum(axis=0)
+    loaded = s[load > 0]
+    centre = 0.5 * float(loaded.min() + loaded.max())
+    right, left = edges(s, load, centre)
+    return centre - left.position, centre + right.position
 
 
 class _Found(Exception):
@@ -192,7 +201,7 @@ def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: Co
                 dom[0] *= ENLARGE
             if any(e.startswith("s") for e in err.edges):
                 dom[1] *= ENLARGE
-    left, right = _lateral_extent(dg.s, res.pressure)
+    left, right = lateral_extent(dg.s, res.pressure)
     Rs = resultants(res, dg, body.centre, spin_point=np.zeros(3), spin_axis=Z)
     spin = Rs.spin_moment if abs(Rs.spin_moment) > SPIN_NOISE * mu * load * h.semi_axis_y else 0.0
     i0 = int(np.argmin(np.abs(dg.x)))
@@ -250,7 +259,7 @@ def solve_groove_planar(geom: GrooveRolling, load: float, mu: float, constants: 
             if enlargement == MAX_ENLARGEMENTS:
                 raise
             dom = [d * ENLARGE for d in dom]
-    left, right = _lateral_extent(g.y, res.pressure)
+    left, right = lateral_extent(g.y, res.pressure)
     q = {"approach": res.approach, "p_max": float(res.pressure.max()), "half_length_s": 0.5 * (right - left),
          "angle_span": (right - left) / geom.groove_radius, "adhesion_fraction": res.adhesion_fraction,
          "creepage_x": float(xi), "spin_moment": res.spin_moment, "friction_power": float(res.frictional_power),

@@ -19,11 +19,14 @@ ring segment (clamped bottom and far end), P2 layered meshes aligned with the in
 semi-smooth Newton (:mod:`femcheck.solvers.coulomb3d`). Levels refine grid and mesh together (cells and the
 section's element size by ``numerics.fem_ratio``); certificates by :func:`femcheck.solvers.convergence.certify`.
 
-Quantities (SI): ``approach`` (m), ``p_max`` (Pa, largest cell pressure), ``contact_half_length_s`` (m, from a
-parabola fitted to the lateral load distribution N*(s) = sum_x p dx), ``angle_span`` (rad, 2 half-length / r_g),
+Quantities (SI): ``p_max`` (Pa, largest cell pressure), ``contact_half_length_s`` (m, half the distance between
+the power-law edges of the lateral load distribution, :func:`femcheck.cect.groove_contact.lateral_extent`, the
+estimator every model of the scene goes through), ``angle_span`` (rad, 2 half-length / r_g),
 ``adhesion_fraction`` (adhesion cells / contact cells), ``creepage_x`` (free-rolling longitudinal creepage
 w_x / V_ref at the reference point), ``spin_moment`` (N m, about the nominal normal through the reference point),
-``friction_power`` (W).
+``friction_power`` (W), ``body_approach`` (m, the approach of the crowned body's axis towards the ring
+segment's clamped base: it holds the compliance of the finite bodies, so it is not the half-space models'
+``approach``, whose datum lies at infinite depth, and is reported, not compared).
 """
 from __future__ import annotations
 
@@ -33,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from ..analytic import hertz
+from ..cect.groove_contact import lateral_extent
 from ..errors import InputError
 from ..materials import Elastic, effective_modulus
 from ..result import ModelResult
@@ -43,7 +47,10 @@ from .rolling_compliance import MeshSettings, RingBody, RollerBody, fe_complianc
 from .rolling_contact import approach_unknown, creepage_unknown, solve_rolling
 from .rolling_geometry import Crowned, Grooved, gap, kinematics
 
-QUANTITIES = ("approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
+# |M_spin| below SPIN_NOISE mu N b_H is zero within the contact solver's tolerance (the scene is symmetric about
+# s = 0 and so is the mirrored mesh: the spin moment then vanishes by symmetry)
+SPIN_NOISE = 1e-7
+QUANTITIES = ("body_approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
               "spin_moment", "friction_power")
 
 FEM_SCHEMA: dict[str, Key] = {
@@ -121,32 +128,26 @@ def setup(p: dict[str, Any]) -> dict[str, Any]:
     return {"r0": r0, "Rc": Rc, "rg": rg, "kappa": kap, "m1": m1, "m2": m2, "hertz": hz, "Rx": Rx, "Ry": Ry}
 
 
-def _grid(g: dict, p: dict, nx: int, ns: int) -> ContactGrid:
+def _grid(g: dict, p: dict, level: int) -> ContactGrid:
+    """Cells of ``level``: dx and ds are the coarsest level's divided by ratio^level exactly (a constant
+    refinement ratio for the certificates); the counts are rounded up to odd numbers (a cell centred on the
+    nominal point) and the window widened by that rounding (at most one cell)."""
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
+    f = p["numerics.fem_ratio"] ** level
+    nx0, ns0 = p["numerics.fem_nx"], p["numerics.fem_ns"]
+    nx, ns = _odd(np.ceil(nx0 * f - 1e-9)), _odd(np.ceil(ns0 * f - 1e-9))
     G = np.array([0.0, 0.0, g["rg"] - g["r0"]])
     return ContactGrid(G, g["rg"], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0],
-                       centred_cells(p["numerics.fem_half_x"] * a, nx), centred_cells(p["numerics.fem_half_s"] * b, ns),
-                       "groove")
-
-
-def _lateral_half_length(s: np.ndarray, load: np.ndarray) -> tuple[float, float]:
-    """(half-length, centre) of the lateral load distribution N*(s): least-squares parabola c0 + c1 s + c2 s^2
-    over the cells with N* > 0.25 max (a Hertzian N*(s) is exactly parabolic), roots of the parabola."""
-    m = load > 0.25 * load.max()
-    c2, c1, c0 = np.polyfit(s[m], load[m], 2)
-    if c2 >= 0:
-        return float(0.5 * (s[m].max() - s[m].min())), float(s[m].mean())
-    centre = -c1 / (2 * c2)
-    disc = c1 * c1 - 4 * c2 * c0
-    return float(np.sqrt(max(disc, 0.0)) / (2 * abs(c2))), float(centre)
+                       centred_cells(p["numerics.fem_half_x"] * a * nx / (nx0 * f), nx),
+                       centred_cells(p["numerics.fem_half_s"] * b * ns / (ns0 * f), ns), "groove")
 
 
 def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     """One level: compliance, free rolling under load control; returns quantities, stats and fields."""
     g = setup(p)
     f = p["numerics.fem_ratio"] ** level
-    nx, ns = _odd(p["numerics.fem_nx"] * f), _odd(p["numerics.fem_ns"] * f)
-    grid = _grid(g, p, nx, ns)
+    grid = _grid(g, p, level)
+    nx, ns = grid.x.size, grid.s.size
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
     r0, rg, kap = g["r0"], g["rg"], g["kappa"]
     roller = RollerBody(r0, g["Rc"], p["numerics.fem_body_length"] * b, g["m1"])
@@ -179,13 +180,16 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     sol = solve_rolling(comp, {"groove": inp}, float(p["friction.mu"]), extras, tol=p["numerics.fem_tol"])
     t_solve = time.perf_counter() - t1
     r = sol.contacts["groove"]
-    half, centre = _lateral_half_length(grid.s, r.lateral_normal)
+    left, right = lateral_extent(grid.s, r.pressure)
+    half, centre = 0.5 * (right - left), 0.5 * (right + left)
     theta = sol.theta["theta"]
     Pref = grid.point(0.0, 0.0)
     w_ref = (body.velocity(Pref, V / r0 * (1.0 + theta)) - groove.velocity(Pref, rate)) @ grid.ex
-    q = {"approach": sol.theta["approach"], "p_max": r.p_max, "contact_half_length_s": half,
+    q = {"body_approach": sol.theta["approach"], "p_max": r.p_max, "contact_half_length_s": half,
          "angle_span": 2.0 * half / rg, "adhesion_fraction": r.adhesion_fraction,
-         "creepage_x": float(w_ref / kin.speed), "spin_moment": r.spin_moment, "friction_power": r.friction_power}
+         "creepage_x": float(w_ref / kin.speed), "friction_power": r.friction_power,
+         "spin_moment": r.spin_moment if abs(r.spin_moment) > SPIN_NOISE * float(p["friction.mu"])
+         * float(p["load.normal"]) * b else 0.0}
     stats = {"level": level, "nx": nx, "ns": ns, "dx": grid.dx, "ds": grid.ds, "h": grid.dx,
              "n_dofs": comp.stats["n_dofs"], "iterations": sol.iterations, "residual": sol.residual,
              "time_compliance_s": t_comp, "time_solve_s": t_solve, "pressure_centre_s": centre,
@@ -214,11 +218,8 @@ def model(scene, progress=None) -> ModelResult:
     certificates = {}
     q = dict(fine["quantities"])
     for name in QUANTITIES:
-        vals = [lv["quantities"][name] for lv in levels]
-        if len(vals) >= 3:
-            c = certify(h, vals, singular=(name == "p_max"))
-        else:
-            c = certify(h, vals)
+        # p_max is the smooth Hertz-like peak of a conformal contact, not an edge singularity: certified like the rest
+        c = certify(h, [lv["quantities"][name] for lv in levels])
         certificates[name] = c.as_dict()
         q[name] = c.value
     stats = {"method": "FE compliances (P2 layered meshes, unit cell loads, Pardiso) + semi-smooth Newton "

@@ -76,10 +76,29 @@ def _boundary_triangles(tets: np.ndarray) -> np.ndarray:
 
 
 def _layered(spec: LayeredSpec) -> tuple[np.ndarray, np.ndarray]:
-    """Reference mesh: points (3, N) in (a, b, c) and tetrahedra (4, M)."""
-    sec, lay = spec.section, np.asarray(spec.layers, dtype=float)
+    """Reference mesh: points (3, N) in (a, b, c) and tetrahedra (4, M).
+
+    Layers symmetric about b = 0 give a mesh symmetric about b = 0: the half b >= 0 is extruded (with a layer
+    boundary added at b = 0 when the central layer straddles it) and mirrored. Why: each extruded prism is split
+    into three tetrahedra with one handedness, so a mesh extruded through the whole width is not its own mirror
+    image, and a problem symmetric in b (a body rolling in a symmetric groove) then shows a lateral force and a
+    spin moment of the order of the discretisation error instead of zero."""
+    lay = np.asarray(spec.layers, dtype=float)
     if lay.size < 2 or np.any(np.diff(lay) <= 0):
         raise ValueError("layers must be increasing")
+    tol = 1e-9 * float(np.abs(lay).max())
+    if lay.size < 3 or not np.allclose(lay, -lay[::-1], rtol=0.0, atol=tol):
+        return _extruded(spec.section, lay)
+    P, tets = _extruded(spec.section, np.concatenate([[0.0], lay[lay > tol]]))
+    on_plane = np.abs(P[1]) <= tol
+    # nodes on b = 0 are shared; every other node gets a mirror image numbered after the half's nodes
+    image = np.where(on_plane, np.arange(P.shape[1]), P.shape[1] + np.cumsum(~on_plane) - 1)
+    mirrored = P[:, ~on_plane] * np.array([[1.0], [-1.0], [1.0]])
+    return np.concatenate([P, mirrored], axis=1), np.concatenate([tets, image[tets]], axis=1)
+
+
+def _extruded(sec: SectionSpec, lay: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The section meshed by Gmsh and extruded through the layer boundaries ``lay`` (one element per layer)."""
     b0 = float(lay[0])
     with _Gmsh("layered_body") as model:
         geo = model.geo

@@ -15,10 +15,11 @@ Models (:mod:`femcheck.cect.groove_contact`):
   neither spin nor a varying rolling radius, so it rolls freely at zero creepage with full adhesion and no
   frictional power; its normal problem differs from the conformal one by the quadratic gap and the flat
   contact plane only.
-- ``fem``: the frictional finite-element reference of issue 11 item 6 goes here, from
-  ``femcheck/fem/groove_rolling.py::model(scene, progress)`` (another branch): add "fem" to MODEL_NAMES, MODELS and
-  DEPENDS ({"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.", "numerics.fem_"),
-  "reference": True}) when it lands.
+- ``fem``: the frictional finite-element reference (issue 11 item 6, :mod:`femcheck.fem.groove_rolling`): FE
+  compliances of the whole crowned body and a ring segment (Gmsh layered P2 meshes, scikit-fem, one
+  factorisation per body) condensed onto the contact cells, steady rolling solved by the FE side's own semi-smooth
+  Newton (:mod:`femcheck.solvers.coulomb3d`), free rolling and load control; levels refining grid and mesh
+  together with certificates. A stored reference (``references/groove_rolling/``); elastic bodies only.
 
 Quantities (SI): ``approach`` (m), ``p_max`` (Pa), ``contact_half_length_s`` (m), ``angle_span`` (rad),
 ``adhesion_fraction``, ``creepage_x`` (free-rolling longitudinal creepage w_x/V at the nominal point, Kalker's
@@ -37,11 +38,12 @@ from ..cect.groove_contact import GridSpec, solve_groove_cect, solve_groove_plan
 from ..cect.influence import combined_constants
 from ..cect.influence_conformal import INFLUENCE_OPTIONS
 from ..errors import InputError
+from ..fem.groove_rolling import FEM_DEFAULTS, FEM_SCHEMA
 from ..geometry.groove import GrooveRolling
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
-MODEL_NAMES = ("cect", "planar")
+MODEL_NAMES = ("cect", "planar", "fem")
 QUANTITIES = ("approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
               "spin_moment", "friction_power")
 MAX_HALF_ANGLE = np.radians(30.0)     # contact half-angle on the groove beyond which the model is not applicable
@@ -79,6 +81,7 @@ SCHEMA: dict[str, Key] = {
     "numerics.variable_dq": Key("bool", "-", "cect: variable rolling step kappa(s) = V(s)/V_ref (seed 000 eq 21)"),
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
+    **FEM_SCHEMA,
 }
 DEFAULTS: dict[str, Any] = {
     "materials.body1.rigid": False,
@@ -94,10 +97,13 @@ DEFAULTS: dict[str, Any] = {
     "numerics.conformal_solver": "auto",
     "numerics.conformal_tol": 1e-9,
     "numerics.variable_dq": True,
+    **FEM_DEFAULTS,
 }
 REQUIRED = ("geometry.rolling_radius", "geometry.crown_radius", "geometry.groove_radius",
             "geometry.ring_curvature", "load.normal", "friction.mu", "kinematics.speed")
-DEPENDS: dict[str, dict] = {}
+# fem: a stored reference, keyed on every input it reads (the cect/planar numerics do not enter it)
+DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.",
+                                               "numerics.fem_"), "reference": True}}
 
 
 def geometry(params: dict[str, Any]) -> GrooveRolling:
@@ -188,7 +194,19 @@ def planar(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("planar", quantities=_quantities(sol.quantities), stats=stats, fields=fields)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "planar": planar}
+def fem(scene: Scene, progress=None) -> ModelResult:
+    """Free rolling by the frictional FE reference (levels with certificates; :mod:`femcheck.fem.groove_rolling`)."""
+    from ..fem import groove_rolling as fe
+
+    p = scene.params
+    for b in ("body1", "body2"):
+        if p[f"materials.{b}.rigid"]:
+            raise InputError(f"materials.{b}.rigid", "true is not allowed with the fem model (it meshes two elastic "
+                                                    "bodies); allowed: false")
+    return fe.model(scene, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "planar": planar, "fem": fem}
 
 
 def load_of(scene: Scene) -> float:
