@@ -24,7 +24,9 @@ from .scene import load_scene
 
 # Per-level numbers that must be reproduced (physics and mesh size; timings and iteration histories are not).
 COMPARED = ("p_max", "p_centre", "p_end", "half_width", "semi_axis_x", "semi_axis_y", "contact_area", "edge_peak_y",
-            "approach", "total_force", "p_max_nodal", "n_nodes", "n_dofs", "n_elements", "h")
+            "approach", "total_force", "p_max_nodal", "n_nodes", "n_dofs", "n_elements", "h",
+            # steady rolling (groove-rolling fem)
+            "body_approach", "contact_half_length_s", "creepage_x", "adhesion_fraction", "friction_power")
 
 
 @dataclass

@@ -18,6 +18,7 @@ STORED = [
     pytest.param("srb-normal", "fem", id="srb-normal-fem", marks=pytest.mark.slow),
     pytest.param("srb-normal", "fem_conformal", id="srb-normal-fem_conformal", marks=pytest.mark.slow),
     pytest.param("roller-finite", "fem", id="roller-finite", marks=pytest.mark.slow),
+    pytest.param("groove-rolling", "fem", id="groove-rolling", marks=pytest.mark.slow),             # 10 s
 ]
 # references whose kind declares no coarsest-level overrides: (scene, model, overrides, numbers compared at least)
 OTHERS = [

@@ -199,7 +199,7 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     fields = {"x": grid.x, "s": grid.s, "pressure": r.pressure, "px": r.px, "ps": r.ps,
               "adhesion": r.adhesion.astype(float), "contact": r.contact.astype(float),
               "slip_x": r.slip_velocity[0], "slip_s": r.slip_velocity[1], "power_density": r.power_density,
-              "lateral_normal": r.lateral_normal, "lateral_longitudinal": r.lateral_longitudinal}
+              "lateral_normal": r.lateral_normal, "lateral_fx": r.lateral_longitudinal}
     return {"quantities": q, "stats": stats, "fields": fields}
 
 

@@ -103,7 +103,8 @@ REQUIRED = ("geometry.rolling_radius", "geometry.crown_radius", "geometry.groove
             "geometry.ring_curvature", "load.normal", "friction.mu", "kinematics.speed")
 # fem: a stored reference, keyed on every input it reads (the cect/planar numerics do not enter it)
 DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.",
-                                               "numerics.fem_"), "reference": True}}
+                                               "numerics.fem_"), "reference": True,
+                                    "coarse": {"numerics.fem_levels": 1}}}
 
 
 def geometry(params: dict[str, Any]) -> GrooveRolling:

@@ -1,5 +1,5 @@
-"""Report section of the groove_rolling kind: the conformal and planar exact theories side by side, the
-adhesion/slip map of the conformal contact and the lateral distributions of normal and tangential load
+"""Report section of the groove_rolling kind: the FE reference, the conformal and planar exact theories side by
+side, the adhesion/slip map of the conformal contact and the lateral distributions of normal and tangential load
 (seed 000 Figs 8-11 for one contact)."""
 from __future__ import annotations
 
@@ -22,19 +22,33 @@ ROWS = (("approach", "approach", 1e6, "um"), ("p_max", "p_max", 1e-9, "GPa"),
         ("friction_power", "frictional power", 1.0, "W"))
 
 
+def _value(run: RunResult, model: str, key: str) -> float | None:
+    m = run.models.get(model)
+    if m is None or m.status != "ok":
+        return None
+    if model == "fem" and key == "approach":
+        key = "body_approach"
+    return m.quantities.get(key)
+
+
+def _diff(v: float | None, ref: float | None) -> str:
+    return "" if ref in (None, 0.0) or v is None else f"{100.0 * (v - ref) / abs(ref):+.2f} %"
+
+
 def _table(run: RunResult) -> Table:
-    c, p = run.models.get("cect"), run.models.get("planar")
     rows = []
     for key, label, scale, unit in ROWS:
-        vc = c.quantities.get(key) if c is not None and c.status == "ok" else None
-        vp = p.quantities.get(key) if p is not None and p.status == "ok" else None
-        diff = "" if vc in (None, 0.0) or vp is None else f"{100.0 * (vp - vc) / abs(vc):+.2f} %"
-        rows.append([f"{label} ({unit})", "" if vc is None else vc * scale, "" if vp is None else vp * scale, diff])
-    note = ("cect: conformal exact theory (exact crown/groove gap, varying rolling radii, variable dq); planar: "
-            "planar exact theory with the Hertz gap. Both roll freely (F_x = 0). Spin moment: zero by symmetry "
-            "(parallel axes).")
-    return Table("Conformal against planar exact theory", ["quantity", "cect", "planar", "planar - cect"], rows,
-                 note)
+        vf, vc, vp = (_value(run, m, key) for m in ("fem", "cect", "planar"))
+        rows.append([f"{label} ({unit})"] + ["" if v is None else v * scale for v in (vf, vc, vp)]
+                    + ["" if key == "approach" else _diff(vc, vf), _diff(vp, vc)])
+    note = ("fem: frictional FE reference (finite roller and ring segment, FE compliances, its own semi-smooth "
+            "Newton; Richardson value where certified, see the certificates); its approach row is the approach of "
+            "the roller axis towards the ring's clamped base, not comparable with the half-space approach of the "
+            "exact theories. cect: conformal exact theory (exact crown/groove gap, varying rolling radii, variable "
+            "dq); planar: planar exact theory with the Hertz gap. All roll freely (F_x = 0). Spin moment: zero by "
+            "symmetry (parallel axes).")
+    return Table("FE reference, conformal and planar exact theory",
+                 ["quantity", "fem", "cect", "planar", "cect - fem", "planar - cect"], rows, note)
 
 
 def _maps(run: RunResult, path: Path) -> str | None:
