@@ -195,8 +195,10 @@ def _crown_map(a, c, k, r):
 
 def _crowned(spec: CrownedSpec) -> BodyMesh:
     r, R = spec.rolling_radius, spec.crown_radius
-    if not crown_rho(spec.half_length, r, R) > 0:
-        raise ValueError("the crown arc reaches the axis before the body's end")
+    if not crown_rho(spec.half_length, r, R) >= 2.0 * r / 3.0:
+        # _crown_map: dX/da = 1 + 3 (k - 1)(a/r)^2 turns negative at a = r when k < 2/3 (folded elements)
+        raise ValueError("the crown radius falls below 2/3 of the rolling radius before the body's end: the "
+                         "section map would fold")
     sec = SectionSpec("half_disk", r, r, tuple((0.0, float(z) * r) for z in spec.zones), spec.h_contact,
                       spec.grading, spec.h_max, spec.align)
     P, tets = _layered(LayeredSpec(sec, spec.layers))
