@@ -30,8 +30,9 @@ from ..geometry import srb_bearing as sb
 
 
 def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh: MeshSettings,
-                 progress=None) -> dict[str, Any]:
-    """FE rolling at the CECT pose (module docstring). Returns {"quantities", "stats", "solution"}."""
+                 progress=None, half_x: float = 1.35) -> dict[str, Any]:
+    """FE rolling at the CECT pose (module docstring) on nx x ns cells per contact over x in +-half_x a_H (the
+    larger contact's). Returns {"quantities", "stats", "solution"}; stats["dx"] is the cell length (m)."""
     b = sb.BearingGeometry.from_params(p)
     mu, N = float(p["friction.mu"]), float(p["load.normal"])
     s = r.state
@@ -50,7 +51,7 @@ def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh
     # windows on the CECT pressure centres that stay on the roller (the FE meshes the roller's length only)
     b_max = max(h.semi_axis_y for h in hz.values())
     room = 0.5 * fe.ROLLER_LENGTH * ns / (ns + 1) - max(abs(sc) for sc in centres.values())
-    grids = fe.grids(p, nx, ns, N, half_s=min(1.3, 0.99 * room / b_max), s_centre=centres)
+    grids = fe.grids(p, nx, ns, N, half_x=half_x, half_s=min(1.3, 0.99 * room / b_max), s_centre=centres)
     if progress:
         progress(f"fem: compliances of the roller and both ring segments ({nx} x {ns} cells)")
     tables = fe.compliance(p, grids, mesh, progress=progress)
@@ -104,7 +105,8 @@ def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh
     q["f_lat_sum"] = q["f_lat_inner"] + q["f_lat_outer"]
     F = F + Q @ s.inertia_force
     M = M + Q @ s.inertia_moment
-    stats = {"iterations": sol.iterations, "residual": sol.residual, "grid": [nx, ns],
+    g0 = grids["inner"]
+    stats = {"iterations": sol.iterations, "residual": sol.residual, "grid": [nx, ns], "dx": g0.dx, "ds": g0.ds,
              "speed_iterations": speed_iterations, "speed_residual": float(np.abs(res0).max()),
              "omega_m": float(z[0]), "omega_R": float(z[1]), "omega_m_cect": om, "omega_R_cect": orr,
              "n_dofs": tables.stats.get("n_dofs"), "approaches": {k: float(th) for k, th in sol.theta.items()},

@@ -17,9 +17,11 @@ Models:
   at the nominal contact centres / at the CECT pressure-centre offset s0 (spec §4.1, check 12): contrasts.
 - ``full_slip``: Table 2's full-slip column: p_t = -mu p_n w/|w| with the CECT pressure and rigid slip at the CECT
   equilibrium (spec §4.4): a contrast (not an equilibrium).
-- ``fem`` (opt-in: ``--models fem``; ~1 min and ~4 GB): the frictional FE of :mod:`femcheck.fem.srb_rolling` at the
-  CECT pose with the speeds re-balanced for free rolling and each contact held at N (not a full FE equilibrium;
-  one coarse level of 11 x 21 cells, no certificate): a contrast with bands.
+- ``fem``: the frictional FE of :mod:`femcheck.fem.srb_rolling` at the CECT pose with the speeds re-balanced for
+  free rolling and each contact held at N (not a full FE equilibrium: the lateral, radial and tilt/skew residuals
+  at the CECT pose are reported), three levels (9 x 17 -> 19 x 35 cells per contact, meshes refined with them)
+  with certificates; stored in ``references/srb_rolling/``. A contrast with bands: the paper's own FEM differs
+  from its CECT by +14 / +17 % in sum f_lat.
 
 Quantities (Table 2's signs and normalisation, :mod:`femcheck.problems._srb_rolling_out`): ``f_x_inner``,
 ``f_x_outer``, ``f_lat_inner``, ``f_lat_outer``, ``f_lat_sum`` (-, F/(mu N)), ``d_y`` (m), ``tilt``, ``skew``
@@ -89,10 +91,14 @@ SCHEMA: dict[str, Key] = {
                                     hi_closed=True),
     "numerics.strip_count": Key("int", "-", "strips of the H+C models", lo=10, hi=5000, lo_closed=True,
                                 hi_closed=True),
-    "numerics.fem_cells_x": Key("int", "-", "fem: cells along x per contact (common dx)", lo=5, hi=61,
-                                lo_closed=True, hi_closed=True),
-    "numerics.fem_cells_s": Key("int", "-", "fem: cells along s per contact (common ds)", lo=5, hi=121,
-                                lo_closed=True, hi_closed=True),
+    "numerics.fem_cells_x": Key("int", "-", "fem: cells along x per contact on the coarsest level (common dx)", lo=5,
+                                hi=61, lo_closed=True, hi_closed=True),
+    "numerics.fem_cells_s": Key("int", "-", "fem: cells along s per contact on the coarsest level (common ds)", lo=5,
+                                hi=121, lo_closed=True, hi_closed=True),
+    "numerics.fem_levels": Key("int", "-", "fem: levels (cells and meshes refined together)", lo=1, hi=3,
+                               lo_closed=True, hi_closed=True),
+    "numerics.fem_ratio": Key("float", "-", "fem: refinement ratio of dx between levels", lo=1.1, hi=2.0,
+                              lo_closed=True, hi_closed=True),
     "numerics.fem_h_contact": Key("float", "dx", "fem: element size at the contact line / dx", lo=0.1, hi=2.0,
                                   hi_closed=True),
     "numerics.fem_grading": Key("float", "-", "fem: mesh grading away from the contact", lo=0.05, hi=1.0,
@@ -122,16 +128,19 @@ DEFAULTS: dict[str, Any] = {
     "numerics.variable_dq": True,
     "numerics.equilibrium_tol": 1e-5,
     "numerics.strip_count": 400,
-    "numerics.fem_cells_x": 11,
-    "numerics.fem_cells_s": 21,
+    "numerics.fem_cells_x": 9,
+    "numerics.fem_cells_s": 17,
+    "numerics.fem_levels": 3,
+    "numerics.fem_ratio": 1.4142135623730951,
     "numerics.fem_h_contact": 0.7,
     "numerics.fem_grading": 0.4,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal", "kinematics.inner_ring_speed")
-# fem: cached (one solve ~1 min, ~4 GB on 11 x 21 cells), not a stored reference: one coarse level, no certificate
+# fem: a stored reference (three levels with certificates; the CECT pose it is solved at is part of its inputs)
 DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "materials.", "load.", "friction.", "kinematics.",
-                                               "roller.", "equilibrium.", "numerics."), "reference": False}}
+                                               "roller.", "equilibrium.", "numerics."), "reference": True,
+                                    "coarse": {"numerics.fem_levels": 1}}}
 
 
 def bearing(p: dict[str, Any]) -> sb.BearingGeometry:
@@ -301,21 +310,44 @@ def full_slip(scene: Scene, progress=None) -> ModelResult:
 
 def fem(scene: Scene, progress=None) -> ModelResult:
     """The frictional FE (FE compliances of the whole roller and two ring segments, the FE side's own Coulomb
-    solver) at the CECT equilibrium's pose, speeds re-balanced for free rolling (:mod:`._srb_rolling_fem`)."""
+    solver) at the CECT equilibrium's pose, speeds re-balanced for free rolling (:mod:`._srb_rolling_fem`), on
+    ``numerics.fem_levels`` levels that refine the cells and the meshes together by ``numerics.fem_ratio`` (dx
+    exactly; the counts rounded up to odd numbers, the window widened by the rounding), with certificates."""
     from ..fem.rolling_compliance import MeshSettings
+    from ..solvers.convergence import certify
     from . import _srb_rolling_fem
 
     p = scene.params
     r = solved(p)
     if r.status != 0:
         return _not_found("fem", r)
-    mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"], 2e-3, 1, 2)
-    o = _srb_rolling_fem.at_cect_pose(p, r, p["numerics.fem_cells_x"], p["numerics.fem_cells_s"], mesh, progress)
+    nx0, ns0, ratio = p["numerics.fem_cells_x"], p["numerics.fem_cells_s"], p["numerics.fem_ratio"]
+    levels = []
+    for k in range(p["numerics.fem_levels"]):
+        f = ratio**k
+        nx, ns = (_odd_up(n * f) for n in (nx0, ns0))
+        if progress:
+            progress(f"fem: level {k + 1}/{p['numerics.fem_levels']} ({nx} x {ns} cells per contact)")
+        mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, 2e-3, 1, 2)
+        o = _srb_rolling_fem.at_cect_pose(p, r, nx, ns, mesh, progress, half_x=1.35 * nx / (nx0 * f))
+        levels.append({"level": k, "nx": nx, "ns": ns, "h": o["stats"]["dx"], **o["quantities"],
+                       **{key: o["stats"][key] for key in ("ds", "n_dofs", "iterations", "residual",
+                                                          "speed_iterations", "speed_residual",
+                                                          "equilibrium_residual_force_N")}})
+    names = list(o["quantities"])
+    certs = {q: certify([lv["h"] for lv in levels], [lv[q] for lv in levels]) for q in names}
+    quantities = {q: c.value for q, c in certs.items()}
+    fine = {q: levels[-1][q] for q in names}
     stats = {**o["stats"], "solver": "FE compliances (P2, PARDISO/LU) + 3D Coulomb semi-smooth Newton "
                                      "(solvers/coulomb3d), speeds by Newton",
-             "certificates": {k: {"value": v, "finest": v, "order": None, "error_estimate": None, "certified": False,
-                                  "note": "one FE level: no refinement study"} for k, v in o["quantities"].items()}}
-    return ModelResult("fem", quantities=o["quantities"], stats=stats)
+             "levels": levels, "level_quantities": names, "finest": fine,
+             "certificates": {q: c.as_dict() for q, c in certs.items()}}
+    return ModelResult("fem", quantities=quantities, stats=stats)
+
+
+def _odd_up(n: float) -> int:
+    k = int(np.ceil(n - 1e-9))
+    return k if k % 2 else k + 1
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "paper": paper, "strip": strip,
