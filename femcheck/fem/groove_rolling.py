@@ -34,10 +34,11 @@ import time
 from typing import Any
 
 import numpy as np
+from scipy.optimize import brentq
 
 from ..analytic import hertz
 from ..cect.groove_contact import lateral_extent
-from ..errors import InputError
+from ..errors import ConvergenceError, InputError
 from ..materials import Elastic, effective_modulus
 from ..result import ModelResult
 from ..scene import Key
@@ -142,6 +143,46 @@ def _grid(g: dict, p: dict, level: int) -> ContactGrid:
                        centred_cells(p["numerics.fem_half_s"] * b * ns / (ns0 * f), ns), "groove")
 
 
+def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_extra, tol: float):
+    """Steady free rolling: (solution, theta). First the coupled semi-smooth Newton with theta as an unknown
+    (:func:`femcheck.fem.rolling_contact.creepage_unknown`). On wide conformal patches (groove/crown <= 1.01 on
+    the coarse levels) nearly every cell slides, the longitudinal force hardly depends on theta and that Newton
+    step throws theta far away; then theta is found by Brent's method on F_x(theta) / (mu N) (monotone), each
+    evaluation a load-controlled solve at a fixed body speed, bracketed from theta = 0 by steps growing 4-fold.
+    Same equations, a safer path; free rolling to |F_x| < 1e-9 mu N either way."""
+    free = creepage_unknown("theta", "groove", inp.grid, dslip, 0.0)
+    try:
+        sol = solve_rolling(comp, {"groove": inp}, mu, [load_extra, free], tol=tol)
+        return sol, sol.theta["theta"]
+    except ConvergenceError:
+        pass
+    N = load_extra.target
+    cache: dict[float, Any] = {}
+
+    def fx(theta: float) -> float:
+        if theta not in cache:
+            shifted = ContactInput(inp.grid, inp.gap, inp.slip + theta * dslip * inp.speed, inp.speed, inp.kappa)
+            warm = cache[min(cache, key=lambda t: abs(t - theta))] if cache else None
+            cache[theta] = solve_rolling(comp, {"groove": shifted}, mu, [load_extra], tol=tol, warm=warm)
+        return cache[theta].contacts["groove"].creep_force_x / (mu * N)
+
+    f0, step = fx(0.0), 1e-3
+    direction = -np.sign(f0) * np.sign(fx(1e-6) - f0)         # towards F_x = 0
+    lo, hi = 0.0, direction * step
+    while np.sign(fx(hi)) == np.sign(f0):
+        if abs(hi) > 1.0:
+            raise ConvergenceError("FE free rolling (bracket on the body speed)", len(cache), abs(fx(hi)), 0.0,
+                                   "no sign change of F_x within |theta| <= 1")
+        lo, hi = hi, 4.0 * hi
+    theta = brentq(fx, min(lo, hi), max(lo, hi), xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=100)
+    sol = cache[theta] if theta in cache else (fx(theta), cache[theta])[1]
+    if abs(fx(theta)) > 1e-9:
+        raise ConvergenceError("FE free rolling (Brent on the body speed)", len(cache), abs(fx(theta)), 1e-9)
+    sol.theta["theta"] = float(theta)
+    sol.stats["free_rolling"] = f"Brent on the body speed, {len(cache)} contact solves"
+    return sol, float(theta)
+
+
 def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     """One level: compliance, free rolling under load control; returns quantities, stats and fields."""
     g = setup(p)
@@ -182,16 +223,18 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     dslip = (kin.slip - kin_w.slip) / kin.speed                    # d(w/V_ref)/dtheta with omega = V/r0 (1 + theta)
     h = gap(grid, body, groove)
     inp = ContactInput(grid, h, kin.slip, kin.speed, kin.kappa)
-    extras = [approach_unknown("approach", "groove", grid, [0.0, 0.0, 1.0], float(p["load.normal"]),
-                               g["hertz"].approach),
-              creepage_unknown("theta", "groove", grid, dslip, 0.0)]
+    load = approach_unknown("approach", "groove", grid, [0.0, 0.0, 1.0], float(p["load.normal"]),
+                            g["hertz"].approach)
     t1 = time.perf_counter()
-    sol = solve_rolling(comp, {"groove": inp}, float(p["friction.mu"]), extras, tol=p["numerics.fem_tol"])
+    sol, theta = _free_rolling(comp, inp, dslip, float(p["friction.mu"]), load, p["numerics.fem_tol"])
     t_solve = time.perf_counter() - t1
     r = sol.contacts["groove"]
     left, right = lateral_extent(grid.s, r.pressure)
     half, centre = 0.5 * (right - left), 0.5 * (right + left)
-    theta = sol.theta["theta"]
+    # steady rolling: the frictional power equals the power of the rigid slip, -sum p.w dA, when the elastic part
+    # <p, d/dx A p> vanishes (a reciprocal, translation-invariant compliance): a check of the FE tables
+    w = kin.slip + theta * dslip * kin.speed
+    rigid_power = float(-(r.px * w[0] + r.ps * w[1]).sum() * grid.cell_area)
     Pref = grid.point(0.0, 0.0)
     w_ref = (body.velocity(Pref, V / r0 * (1.0 + theta)) - groove.velocity(Pref, rate)) @ grid.ex
     q = {"body_approach": sol.theta["approach"], "p_max": r.p_max, "contact_half_length_s": half,
@@ -202,6 +245,7 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     stats = {"level": level, "nx": nx, "ns": ns, "dx": grid.dx, "ds": grid.ds, "h": grid.dx,
              "n_dofs": comp.stats["n_dofs"], "iterations": sol.iterations, "residual": sol.residual,
              "time_compliance_s": t_comp, "time_solve_s": t_solve, "pressure_centre_s": centre,
+             "rigid_slip_power": rigid_power,
              "normal_force": r.normal_force, "creep_force_x": r.creep_force_x, "creep_force_s": r.creep_force_s,
              "bodies": {k: {kk: v[kk] for kk in ("n_nodes", "n_dofs", "times", "factorisations")}
                         for k, v in comp.stats.items() if isinstance(v, dict) and "n_dofs" in v}, **q}

@@ -81,11 +81,14 @@ def roller_mesh(roller: RollerBody, grids: dict[str, ContactGrid], mesh: MeshSet
 
 
 def _merge(values: np.ndarray, ds: float) -> np.ndarray:
-    """Sorted values with duplicates (closer than 1e-3 ds) merged: the cell edges of several grids (all kept, so
-    that element faces follow every grid's cells; grids with a common ds give a single set)."""
+    """Sorted values with near-duplicates merged into their mean: the cell edges of several grids mapped onto the
+    roller's axis. Grids on a common s-lattice (ds, centres on multiples of ds) differ there only by the
+    profiles' s^3/(6 r_g^2) (inner and outer grooves of seed 000: <= 2 % of ds): edges closer than 0.1 ds are one
+    layer boundary, so the layers do not double with slivers; element faces then follow each grid's cell edges
+    to within that."""
     v = np.sort(values)
-    keep = np.concatenate([[True], np.diff(v) > 1e-3 * ds])
-    return v[keep]
+    group = np.concatenate([[0], np.cumsum(np.diff(v) > 0.1 * ds)])
+    return np.bincount(group, weights=v) / np.bincount(group)
 
 
 def ring_mesh(ring: RingBody, grid: ContactGrid, mesh: MeshSettings):

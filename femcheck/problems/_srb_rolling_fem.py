@@ -51,7 +51,12 @@ def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh
     # windows on the CECT pressure centres that stay on the roller (the FE meshes the roller's length only)
     b_max = max(h.semi_axis_y for h in hz.values())
     room = 0.5 * fe.ROLLER_LENGTH * ns / (ns + 1) - max(abs(sc) for sc in centres.values())
-    grids = fe.grids(p, nx, ns, N, half_x=half_x, half_s=min(1.3, 0.99 * room / b_max), s_centre=centres)
+    half_s = min(1.3, 0.99 * room / b_max)
+    ds = fe.grids(p, nx, ns, N, half_x=half_x, half_s=half_s)["inner"].ds
+    # window centres on the common cell lattice (multiples of ds): the roller's mesh layers follow the cell edges
+    # of both contacts, and two lattices offset by a fraction of ds would double the layers with slivers
+    grids = fe.grids(p, nx, ns, N, half_x=half_x, half_s=half_s,
+                     s_centre={c: ds * round(sc / ds) for c, sc in centres.items()})
     if progress:
         progress(f"fem: compliances of the roller and both ring segments ({nx} x {ns} cells)")
     tables = fe.compliance(p, grids, mesh, progress=progress)
@@ -87,8 +92,15 @@ def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh
             dz = np.zeros(2)
             dz[k] = h[k]
             J[:, k] = (solve(z + dz, sol)[0] - res0) / h[k]
-        z = z + np.linalg.solve(J, -res0)
-        res0, sol = solve(z, sol)
+        dz = np.linalg.solve(J, -res0)
+        # damped: the contacts saturate (full slip) a few mu N away from free rolling, where the Jacobian vanishes;
+        # halve the step until the residual falls
+        for _ in range(12):
+            res1, sol1 = solve(z + dz, sol)
+            if np.abs(res1).max() < np.abs(res0).max():
+                break
+            dz = 0.5 * dz
+        z, res0, sol = z + dz, res1, sol1
     if np.abs(res0).max() >= 1e-6:
         raise ConvergenceError("FE free rolling (omega_m, omega_R)", speed_iterations, float(np.abs(res0).max()),
                                1e-6)
