@@ -216,7 +216,8 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
         groove = Grooved(np.asarray(G), rg, rail_direction=np.array([1.0, 0.0, 0.0]))
         rate = -V
     else:
-        groove = Grooved(np.asarray(G), rg, np.asarray(axis_point), np.asarray(axis_dir))
+        groove = Grooved(np.asarray(G), rg, np.asarray(axis_point), np.asarray(axis_dir),
+                         reference=np.array([0.0, 0.0, -r0]))
         rate = -V * kap                        # ring surface at the reference point moves at -V e_x
     kin = kinematics(grid, body, V / r0, groove, rate)
     kin_w = kinematics(grid, body, 0.0, groove, rate)

@@ -50,13 +50,18 @@ class Crowned:
 @dataclass(frozen=True)
 class Grooved:
     """Ring about ``axis`` through ``origin`` with the groove circle (centre ``groove_centre``, radius
-    ``groove_radius``); ``axis`` None: a straight rail along ``rail_direction``."""
+    ``groove_radius``); ``axis`` None: a straight rail along ``rail_direction``. ``reference``: a point of the
+    contact; the groove centre's radial coordinate rho_G is then signed, negative when the centre lies across the
+    axis from the contact's meridian half-plane (a concave ring whose radius is below the groove radius, e.g.
+    ring radius 102.4 mm with a 103 mm groove: the groove circles of the meridian half-planes cross the axis).
+    Without it rho_G = |G - axis| (the groove centre on the contact's side, or on the axis)."""
 
     groove_centre: np.ndarray
     groove_radius: float
     origin: np.ndarray | None = None
     axis: np.ndarray | None = None
     rail_direction: np.ndarray | None = None
+    reference: np.ndarray | None = None
 
     def implicit(self, P: np.ndarray) -> np.ndarray:
         if self.axis is None:
@@ -66,6 +71,9 @@ class Grooved:
         gd = self.groove_centre - self.origin
         aG = gd @ self.axis
         rG = np.linalg.norm(gd - aG * self.axis)
+        if self.reference is not None:
+            rd = self.reference - self.origin
+            rG = rG if (gd - aG * self.axis) @ (rd - (rd @ self.axis) * self.axis) >= 0 else -rG
         d = P - self.origin
         a = d @ self.axis
         rho = np.linalg.norm(d - a[..., None] * self.axis, axis=-1)
