@@ -128,7 +128,7 @@ def test_indent_additional_pressure_below_dry_and_tends_to_it_as_speed_falls():
     contact is an upper bound of the EHL amplitude, which approaches it as the speed falls). The speed falls 4x
     twice from M = 50, L = 8 (below the thesis' range M >= 100) to M = 100 x 2^(3/2), L = 8 / 2^(1/2): the amplitude
     over the shoulders stays below the indent-dry BEM value (0.168 p_H) and the gap to it shrinks, by more than a
-    third on the second step (measured EHL/dry 0.640, 0.738, 0.875 on 65^2; 0.76 and 0.91 at M = 100 and 283 on
+    third on the second step (measured EHL/dry 0.597, 0.740, 0.877 on 65^2; 0.76 and 0.91 at M = 100 and 283 on
     129^2, README). At M = 50 the maximum of dP over the disc r <= 1.5 Phi sits on the outlet spike, 0.8 b from
     the centre, downstream of the smooth spike's crest: the old amplitude (that maximum) read it and exceeded the
     dry value (0.169 on 65^2, 0.283 on 129^2)."""
@@ -152,4 +152,4 @@ def test_indent_additional_pressure_below_dry_and_tends_to_it_as_speed_falls():
     assert all(r < 1.0 for r in ratio), ratio
     gap = [1.0 - r for r in ratio]
     assert gap[1] < gap[0] and gap[2] < (2.0 / 3.0) * gap[1], ratio
-    assert ratio[2] > 0.8, ratio              # within 20 % of dry at M = 283 (12.5 % on 65^2, 9.4 % on 129^2)
+    assert ratio[2] > 0.8, ratio              # within 20 % of dry at M = 283 (12.3 % on 65^2, 9 % on 129^2)

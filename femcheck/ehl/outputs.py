@@ -4,16 +4,16 @@
   outlet spike).
 - Additional pressure dP = P_indented - P_smooth on the same grid at the same T. Seed 004 gives the amplitudes
   "over the shoulders" of the indent (§3.3.1, Fig 3.16: the rear shoulder) and neglects the outlet Newtonian
-  pressure spike (§3.3.1 after Table 3.4, and its conclusion). Here, read along rays from the indent centre
-  (X_D, Y_D) out to r = 1.5 Phi, the shoulder is the first positive local maximum of dP outwards from the hole;
-  dP_FRONT, dP_REAR, dP_LAT are the largest shoulder values over the rays of the downstream (X - X_D > |Y - Y_D|,
-  "first in the contact"), upstream (X_D - X > |Y - Y_D|) and side (|Y - Y_D| >= |X - X_D|) sectors, and the
-  amplitude is the largest of the three (for the axisymmetric dry contact it is the dry model's single amplitude,
-  the maximum of dP). dP_CENT = min dP in the hole (r <= Phi/2, negative).
+  pressure spike (§3.3.1 after Table 3.4, and its conclusion). The shoulder zone: along rays from the indent centre
+  (X_D, Y_D) out to r = 1.5 Phi, dP read outwards from the hole up to its first positive local maximum, plus one
+  cell. dP_FRONT, dP_REAR, dP_LAT are the largest nodal dP of that zone downstream (X - X_D > |Y - Y_D|, "first in
+  the contact"), upstream (X_D - X > |Y - Y_D|) and on the sides (|Y - Y_D| >= |X - X_D|); the amplitude is the
+  largest of the three (where the disc holds nothing beyond the shoulders it equals the maximum of dP, the dry
+  model's single amplitude). dP_CENT = min dP in the hole (r <= Phi/2, negative).
 - ``disc_max``: max dP over the whole disc r <= 1.5 Phi. It is not an amplitude: for an indent as large as the
   contact it also catches features beyond the shoulders -- at M = 50, L = 8, Phi = 1 the outlet spike, which the
-  indent shifts downstream by a cell, gives dP = 0.17 / 0.28 p_H on 65^2 / 129^2 one to two cells wide at the outlet
-  (shoulder amplitude 0.11 / 0.10; README, EHL open points) -- and is kept for the record only.
+  indent shifts 0.03 b downstream, gives dP = 0.17 / 0.28 / 0.43 p_H on 65^2 / 129^2 / 257^2, one or two cells
+  wide (shoulders 0.11 / 0.10 / 0.10; README, EHL) -- and is kept for the record only.
 """
 from __future__ import annotations
 
@@ -52,21 +52,22 @@ def shoulder_peaks(x: np.ndarray, y: np.ndarray, dP: np.ndarray, xd: float, yd: 
 def additional_pressure(x: np.ndarray, y: np.ndarray, dP: np.ndarray, xd: float, yd: float,
                         phi: float) -> dict[str, float]:
     """dP amplitudes (dimensionless, as dP) around an indent centred at (xd, yd) of diameter phi."""
-    theta, peak, _ = shoulder_peaks(x, y, dP, xd, yd, 1.5 * phi)
-    c, s = np.cos(theta), np.sin(theta)
-    eps = 1e-12
-
-    def largest(mask):
-        v = peak[mask]
-        return float(np.nanmax(v)) if np.isfinite(v).any() else float("nan")
-
-    out = {"front": largest(c > np.abs(s) + eps), "rear": largest(-c > np.abs(s) + eps),
-           "lateral": largest(np.abs(s) >= np.abs(c) - eps)}
-    sides = [v for v in out.values() if np.isfinite(v)]
-    out["amplitude"] = max(sides) if sides else float("nan")
+    reach = 1.5 * phi
+    theta, _, r_peak = shoulder_peaks(x, y, dP, xd, yd, reach)
     X, Y = np.meshgrid(x - xd, y - yd, indexing="ij")
     r = np.hypot(X, Y)
-    hole, near = r <= 0.5 * phi, r <= 1.5 * phi
+    ray = np.rint(np.mod(np.arctan2(Y, X), 2.0 * np.pi) / (2.0 * np.pi) * theta.size).astype(int) % theta.size
+    limit = r_peak[ray] + (x[1] - x[0])              # NaN (no shoulder on the ray) compares False
+    zone = (r <= limit) & (r <= reach)
+
+    def largest(mask):
+        m = zone & mask
+        return float(dP[m].max()) if m.any() else float("nan")
+
+    out = {"front": largest(X > np.abs(Y)), "rear": largest(-X > np.abs(Y)), "lateral": largest(np.abs(Y) >= np.abs(X))}
+    sides = [v for v in out.values() if np.isfinite(v)]
+    out["amplitude"] = max(sides) if sides else float("nan")
+    hole, near = r <= 0.5 * phi, r <= reach
     out["centre"] = float(dP[hole].min()) if hole.any() else float("nan")
     out["disc_max"] = float(dP[near].max()) if near.any() else float("nan")
     return out
