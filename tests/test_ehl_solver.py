@@ -112,7 +112,13 @@ def test_indent_march_keeps_load_balance_and_opens_the_gap():
     assert last.x[i0] == pytest.approx(0.0, abs=1e-12) and last.y[j0] == pytest.approx(0.0, abs=1e-12)
     assert last.H[i0, j0] - sol.H[i0, j0] > 0.5 * ind.depth
     a = outputs.additional_pressure(last.x, last.y, last.P - sol.P, 0.0, 0.0, 1.0)
-    assert a["centre"] < -0.2 and min(a["rear"], a["front"], a["lateral"]) > 0.02
+    # shoulders: dP > 0 on each, peaking at 0.5-0.8 Phi on the axes (the front one, 0.015, is the smallest: it sits
+    # at X = 0.75 b where the smooth pressure already falls; the former max over the disc read 0.034 there at the
+    # contact's outlet edge, X = 0.875 b)
+    assert a["centre"] < -0.2 and min(a["rear"], a["front"], a["lateral"]) > 0.01
+    theta, _, r_peak = outputs.shoulder_peaks(last.x, last.y, last.P - sol.P, 0.0, 0.0, 1.5, start=0.5)
+    axes = np.isclose(np.mod(theta, np.pi / 2), 0.0)
+    assert axes.sum() == 4 and np.all((r_peak[axes] >= 0.5) & (r_peak[axes] <= 0.8)), r_peak[axes]
     assert a["amplitude"] == pytest.approx(max(a["rear"], a["front"], a["lateral"]), rel=1e-12)
     assert last.P.shape == (65, 65) and last.T == pytest.approx(hist.T[-1])
 

@@ -80,8 +80,8 @@ def crossing(s: Setup, indent_keys: dict[str, float], slide_roll: float, tol: fl
              progress=None, snapshots: int = 16) -> dict[str, Any]:
     """Smooth steady solution, then the indent (Phi, D/Phi, K) enters at the inlet and is marched to X_D = 0.
 
-    Returns the smooth solution, the history (per step: T, X_D, dP amplitudes, load error, cycles) and the kept
-    pressure snapshots (``snapshots`` evenly spaced steps, the last at X_D = 0)."""
+    Returns the smooth solution, the history (per step: T, X_D, dP amplitudes of :func:`outputs.additional_pressure`,
+    load error, cycles) and the kept pressure snapshots (``snapshots`` evenly spaced steps, the last at X_D = 0)."""
     t0 = time.perf_counter()
     phi, slope, K = indent_keys["diameter"], indent_keys["slope"], indent_keys["decay"]
     smooth, mg = solve_smooth(s, tol, load_tol)
@@ -92,7 +92,8 @@ def crossing(s: Setup, indent_keys: dict[str, float], slide_roll: float, tol: fl
     mg.prob = dataclasses.replace(s.prob, indent=ind)
     mg.set_time(0.0)
     transient.start(mg)
-    amps: dict[str, list[float]] = {k: [] for k in ("front", "rear", "lateral", "centre", "amplitude")}
+    amps: dict[str, list[float]] = {k: [] for k in ("front", "rear", "lateral", "centre", "amplitude",
+                                                  "disc_max")}
     kept = snapshot_steps(steps, snapshots)
     lv = mg.fine
 

@@ -11,8 +11,9 @@ Models: ``ehl`` (FAS/FMG multigrid, NU2 transient; :mod:`femcheck.ehl`), ``moes`
 central film), ``hamrock_dowson`` (central and minimum film), ``dry`` (half-space BEM: Hertz p_max, and with an
 indent its additional pressure, the upper bound of the lubricated one).
 Quantities: ``h_central``, ``h_min`` (m), ``p_max`` (Pa), ``H_central_moes``, ``H_min_moes`` (h/Rx U_M^-1/2, U_M on
-the sum speed), ``load_error``; with an indent ``additional_pressure`` (max dP near the indent, Pa) and
-``additional_pressure_rear|front|lateral|centre`` (Pa, :mod:`femcheck.ehl.outputs`).
+the sum speed), ``load_error``; with an indent ``additional_pressure`` (the largest dP on the indent's shoulders,
+Pa), ``additional_pressure_rear|front|lateral|centre`` (Pa) and, for the record, ``additional_pressure_disc_max``
+(max dP within 1.5 Phi, which for large indents also reads the outlet spike; :mod:`femcheck.ehl.outputs`).
 """
 from __future__ import annotations
 
