@@ -25,8 +25,9 @@ from .scene import load_scene
 # Per-level numbers that must be reproduced (physics and mesh size; timings and iteration histories are not).
 COMPARED = ("p_max", "p_centre", "p_end", "half_width", "semi_axis_x", "semi_axis_y", "contact_area", "edge_peak_y",
             "approach", "total_force", "p_max_nodal", "n_nodes", "n_dofs", "n_elements", "h",
-            # steady rolling (groove-rolling fem)
-            "body_approach", "contact_half_length_s", "creepage_x", "adhesion_fraction", "friction_power")
+            # steady rolling (groove-rolling and srb-rolling fem)
+            "body_approach", "contact_half_length_s", "creepage_x", "adhesion_fraction", "friction_power",
+            "f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "omega_m", "omega_R")
 
 
 @dataclass

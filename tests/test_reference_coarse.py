@@ -19,6 +19,7 @@ STORED = [
     pytest.param("srb-normal", "fem_conformal", id="srb-normal-fem_conformal", marks=pytest.mark.slow),
     pytest.param("roller-finite", "fem", id="roller-finite", marks=pytest.mark.slow),
     pytest.param("groove-rolling", "fem", id="groove-rolling", marks=pytest.mark.slow),             # 10 s
+    pytest.param("srb-rolling", "fem", id="srb-rolling", marks=pytest.mark.slow),                   # 30 s
 ]
 # references whose kind declares no coarsest-level overrides: (scene, model, overrides, numbers compared at least)
 OTHERS = [
