@@ -149,7 +149,7 @@ def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_ex
     the coarse levels) nearly every cell slides, the longitudinal force hardly depends on theta and that Newton
     step throws theta far away; then theta is found by Brent's method on F_x(theta) / (mu N) (monotone), each
     evaluation a load-controlled solve at a fixed body speed, bracketed from theta = 0 by steps growing 4-fold.
-    Same equations, a safer path; free rolling to |F_x| < 1e-9 mu N either way."""
+    Same equations, a safer path; free rolling to |F_x| < 1e-9 mu N (Newton) or 1e-7 mu N (Brent)."""
     free = creepage_unknown("theta", "groove", inp.grid, dslip, 0.0)
     try:
         sol = solve_rolling(comp, {"groove": inp}, mu, [load_extra, free], tol=tol)
@@ -176,8 +176,10 @@ def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_ex
         lo, hi = hi, 4.0 * hi
     theta = brentq(fx, min(lo, hi), max(lo, hi), xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=100)
     sol = cache[theta] if theta in cache else (fx(theta), cache[theta])[1]
-    if abs(fx(theta)) > 1e-9:
-        raise ConvergenceError("FE free rolling (Brent on the body speed)", len(cache), abs(fx(theta)), 1e-9)
+    # each evaluation is converged to the contact tolerance, so F_x(theta) carries noise of that order: the root
+    # is accepted at |F_x| < 1e-7 mu N (the conformal exact theory's free-rolling tolerance)
+    if abs(fx(theta)) > 1e-7:
+        raise ConvergenceError("FE free rolling (Brent on the body speed)", len(cache), abs(fx(theta)), 1e-7)
     sol.theta["theta"] = float(theta)
     sol.stats["free_rolling"] = f"Brent on the body speed, {len(cache)} contact solves"
     return sol, float(theta)
