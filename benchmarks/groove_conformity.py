@@ -26,10 +26,12 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--fem-levels", type=int, default=1)
     ap.add_argument("--out", default="benchmarks/results/groove_conformity")
+    ap.add_argument("--ratios", type=float, nargs="*", default=RATIOS)
+    ap.add_argument("--rings", nargs="*", default=list(RINGS), choices=list(RINGS))
     a = ap.parse_args()
     rows = []
-    for ratio in RATIOS:
-        for ring, k in RINGS.items():
+    for ratio in a.ratios:
+        for ring, k in ((r, RINGS[r]) for r in a.rings):
             t0 = time.perf_counter()
             over = {"geometry.groove_radius": 0.1003 * ratio, "geometry.ring_curvature": k,
                     "numerics.fem_levels": a.fem_levels}
