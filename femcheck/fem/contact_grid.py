@@ -160,6 +160,16 @@ class ContactGrid:
         return ContactGrid(self.centre, self.radius, self.m0, self.tau0, self.ex, x, s, self.name)
 
 
+def refined_count(n0: int, factor: float) -> tuple[int, float]:
+    """Cells of a level refined by ``factor`` from ``n0`` coarsest cells: (n, widening). The cell size is the
+    coarsest one's / factor exactly (a constant refinement ratio for the certificates); n is n0 factor rounded up
+    to an odd count (a cell centred on the reference point), so the window widens by n / (n0 factor) (less than
+    two cells)."""
+    k = int(np.ceil(n0 * factor - 1e-9))
+    n = k if k % 2 else k + 1
+    return n, n / (n0 * factor)
+
+
 def centred_cells(half: float, n: int, centre: float = 0.0) -> np.ndarray:
     """n equal cells over centre + [-half, half] (m): their centres."""
     d = 2.0 * half / n

@@ -43,7 +43,7 @@ from ..materials import Elastic, effective_modulus
 from ..result import ModelResult
 from ..scene import Key
 from ..solvers.convergence import certify
-from .contact_grid import ContactGrid, ContactInput, centred_cells
+from .contact_grid import ContactGrid, ContactInput, centred_cells, refined_count
 from .rolling_compliance import MeshSettings, RingBody, RollerBody, fe_compliance
 from .rolling_contact import approach_unknown, creepage_unknown, solve_rolling
 from .rolling_geometry import Crowned, Grooved, gap, kinematics
@@ -104,11 +104,6 @@ def _params(scene) -> dict[str, Any]:
     return {**FEM_DEFAULTS, **p}
 
 
-def _odd(n: float) -> int:
-    k = int(round(n))
-    return k if k % 2 else k + 1
-
-
 def setup(p: dict[str, Any]) -> dict[str, Any]:
     """Bodies, Hertz estimate and frames from the scene keys (see the module docstring); raises InputError."""
     r0, Rc = float(p["geometry.rolling_radius"]), float(p["geometry.crown_radius"])
@@ -130,17 +125,16 @@ def setup(p: dict[str, Any]) -> dict[str, Any]:
 
 
 def _grid(g: dict, p: dict, level: int) -> ContactGrid:
-    """Cells of ``level``: dx and ds are the coarsest level's divided by ratio^level exactly (a constant
-    refinement ratio for the certificates); the counts are rounded up to odd numbers (a cell centred on the
-    nominal point) and the window widened by that rounding (at most one cell)."""
+    """Cells of ``level`` (:func:`femcheck.fem.contact_grid.refined_count`: dx and ds exactly the coarsest
+    level's / ratio^level, odd counts, the window widened by the rounding)."""
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
     f = p["numerics.fem_ratio"] ** level
-    nx0, ns0 = p["numerics.fem_nx"], p["numerics.fem_ns"]
-    nx, ns = _odd(np.ceil(nx0 * f - 1e-9)), _odd(np.ceil(ns0 * f - 1e-9))
+    nx, wx = refined_count(p["numerics.fem_nx"], f)
+    ns, ws = refined_count(p["numerics.fem_ns"], f)
     G = np.array([0.0, 0.0, g["rg"] - g["r0"]])
     return ContactGrid(G, g["rg"], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0],
-                       centred_cells(p["numerics.fem_half_x"] * a * nx / (nx0 * f), nx),
-                       centred_cells(p["numerics.fem_half_s"] * b * ns / (ns0 * f), ns), "groove")
+                       centred_cells(p["numerics.fem_half_x"] * a * wx, nx),
+                       centred_cells(p["numerics.fem_half_s"] * b * ws, ns), "groove")
 
 
 def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_extra, tol: float):

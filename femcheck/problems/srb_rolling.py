@@ -313,6 +313,7 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     solver) at the CECT equilibrium's pose, speeds re-balanced for free rolling (:mod:`._srb_rolling_fem`), on
     ``numerics.fem_levels`` levels that refine the cells and the meshes together by ``numerics.fem_ratio`` (dx
     exactly; the counts rounded up to odd numbers, the window widened by the rounding), with certificates."""
+    from ..fem.contact_grid import refined_count
     from ..fem.rolling_compliance import MeshSettings
     from ..solvers.convergence import certify
     from . import _srb_rolling_fem
@@ -321,15 +322,15 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     r = solved(p)
     if r.status != 0:
         return _not_found("fem", r)
-    nx0, ns0, ratio = p["numerics.fem_cells_x"], p["numerics.fem_cells_s"], p["numerics.fem_ratio"]
     levels = []
     for k in range(p["numerics.fem_levels"]):
-        f = ratio**k
-        nx, ns = (_odd_up(n * f) for n in (nx0, ns0))
+        f = p["numerics.fem_ratio"] ** k
+        nx, widen_x = refined_count(p["numerics.fem_cells_x"], f)
+        ns, _ = refined_count(p["numerics.fem_cells_s"], f)
         if progress:
             progress(f"fem: level {k + 1}/{p['numerics.fem_levels']} ({nx} x {ns} cells per contact)")
         mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, 2e-3, 1, 2)
-        o = _srb_rolling_fem.at_cect_pose(p, r, nx, ns, mesh, progress, half_x=1.35 * nx / (nx0 * f))
+        o = _srb_rolling_fem.at_cect_pose(p, r, nx, ns, mesh, progress, half_x=1.35 * widen_x)
         levels.append({"level": k, "nx": nx, "ns": ns, "h": o["stats"]["dx"], **o["quantities"],
                        **{key: o["stats"][key] for key in ("ds", "n_dofs", "iterations", "residual",
                                                           "speed_iterations", "speed_residual",
@@ -343,11 +344,6 @@ def fem(scene: Scene, progress=None) -> ModelResult:
              "levels": levels, "level_quantities": names, "finest": fine,
              "certificates": {q: c.as_dict() for q, c in certs.items()}}
     return ModelResult("fem", quantities=quantities, stats=stats)
-
-
-def _odd_up(n: float) -> int:
-    k = int(np.ceil(n - 1e-9))
-    return k if k % 2 else k + 1
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "paper": paper, "strip": strip,
