@@ -37,7 +37,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..analytic import hertz
-from ..cect.groove_contact import lateral_extent
+from ..cect.groove_contact import FREE_ROLLING_TOL, SPIN_NOISE, lateral_extent
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic, effective_modulus
 from ..result import ModelResult
@@ -48,9 +48,6 @@ from .rolling_compliance import MeshSettings, RingBody, RollerBody, fe_complianc
 from .rolling_contact import approach_unknown, creepage_unknown, solve_rolling
 from .rolling_geometry import Crowned, Grooved, gap, kinematics
 
-# |M_spin| below SPIN_NOISE mu N b_H is zero within the contact solver's tolerance (the scene is symmetric about
-# s = 0 and so is the mirrored mesh: the spin moment then vanishes by symmetry)
-SPIN_NOISE = 1e-7
 QUANTITIES = ("body_approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
               "spin_moment", "friction_power")
 
@@ -169,11 +166,12 @@ def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_ex
                                    "no sign change of F_x within |theta| <= 1")
         lo, hi = hi, 4.0 * hi
     theta = brentq(fx, min(lo, hi), max(lo, hi), xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=100)
-    sol = cache[theta] if theta in cache else (fx(theta), cache[theta])[1]
+    residual = abs(fx(theta))
+    sol = cache[theta]
     # each evaluation is converged to the contact tolerance, so F_x(theta) carries noise of that order: the root
     # is accepted at |F_x| < 1e-7 mu N (the conformal exact theory's free-rolling tolerance)
-    if abs(fx(theta)) > 1e-7:
-        raise ConvergenceError("FE free rolling (Brent on the body speed)", len(cache), abs(fx(theta)), 1e-7)
+    if residual > FREE_ROLLING_TOL:
+        raise ConvergenceError("FE free rolling (Brent on the body speed)", len(cache), residual, FREE_ROLLING_TOL)
     sol.theta["theta"] = float(theta)
     sol.stats["free_rolling"] = f"Brent on the body speed, {len(cache)} contact solves"
     return sol, float(theta)
@@ -237,6 +235,7 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     q = {"body_approach": sol.theta["approach"], "p_max": r.p_max, "contact_half_length_s": half,
          "angle_span": 2.0 * half / rg, "adhesion_fraction": r.adhesion_fraction,
          "creepage_x": float(w_ref / kin.speed), "friction_power": r.friction_power,
+         # zero by symmetry (the scene and the mirrored mesh): below the exact theory's noise level it is zero
          "spin_moment": r.spin_moment if abs(r.spin_moment) > SPIN_NOISE * float(p["friction.mu"])
          * float(p["load.normal"]) * b else 0.0}
     stats = {"level": level, "nx": nx, "ns": ns, "dx": grid.dx, "ds": grid.ds, "h": grid.dx,
@@ -264,6 +263,7 @@ def model(scene, progress=None) -> ModelResult:
             progress(f"FE groove rolling, level {k + 1}/{n_levels}")
         levels.append(solve_level(p, k, progress))
     fine = levels[-1]
+    hz = setup(p)["hertz"]
     h = [lv["stats"]["h"] for lv in levels]
     certificates = {}
     q = dict(fine["quantities"])
@@ -277,6 +277,6 @@ def model(scene, progress=None) -> ModelResult:
              "levels": [lv["stats"] for lv in levels], "level_quantities": list(QUANTITIES),
              "certificates": certificates, "iterations": fine["stats"]["iterations"],
              "residual": fine["stats"]["residual"], "finest": dict(fine["quantities"]),
-             "hertz": {"semi_axis_x": setup(p)["hertz"].semi_axis_x, "semi_axis_y": setup(p)["hertz"].semi_axis_y,
-                       "p_max": setup(p)["hertz"].p_max, "approach": setup(p)["hertz"].approach}}
+             "hertz": {"semi_axis_x": hz.semi_axis_x, "semi_axis_y": hz.semi_axis_y, "p_max": hz.p_max,
+                       "approach": hz.approach}}
     return ModelResult("fem", time_s=time.perf_counter() - t0, quantities=q, stats=stats, fields=fine["fields"])
