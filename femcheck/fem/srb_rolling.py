@@ -60,18 +60,20 @@ def hertz_estimates(params: dict[str, Any], load: float) -> dict[str, Any]:
 
 def grids(params: dict[str, Any], nx: int, ns: int, load: float, half_x: float = 1.35, half_s: float = 1.3,
           s_centre: dict[str, float] | None = None) -> dict[str, ContactGrid]:
-    """Developed grids of both contacts with a common dx (FE cross tables need it) and a common ds (the roller's
-    layers then follow the cells of both): x in +-half_x max(a_H), s in s_centre +- half_s max(b_H) (clipped
-    to the roller length less one cell)."""
+    """Developed grids of both contacts with a common dx (FE cross tables need it) and a common ds on a common
+    lattice (the roller's layers then follow the cells of both): x in +-half_x max(a_H), s in s_centre +- half_s
+    max(b_H) (clipped to the roller length less one cell), each centre moved to the nearest multiple of ds (two
+    lattices offset by a fraction of ds would double the roller's layers with slivers)."""
     g = geometry(params)
     hz = hertz_estimates(params, load)
     a = max(h.semi_axis_x for h in hz.values())
     b = max(h.semi_axis_y for h in hz.values())
     dx = 2.0 * half_x * a / nx
     half = min(half_s * b, 0.5 * ROLLER_LENGTH * ns / (ns + 1))
+    ds = 2.0 * half / ns
     out = {}
     for c in CONTACTS:
-        sc = 0.0 if s_centre is None else float(s_centre.get(c, 0.0))
+        sc = 0.0 if s_centre is None else ds * round(float(s_centre.get(c, 0.0)) / ds)
         x = (np.arange(nx) - 0.5 * (nx - 1)) * dx
         out[c] = ContactGrid(g[c]["G"], g[c]["rg"], g[c]["m0"], [0.0, 1.0, 0.0], g[c]["ex"], x,
                              centred_cells(half, ns, sc), c)

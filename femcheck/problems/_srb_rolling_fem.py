@@ -51,12 +51,8 @@ def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh
     # windows on the CECT pressure centres that stay on the roller (the FE meshes the roller's length only)
     b_max = max(h.semi_axis_y for h in hz.values())
     room = 0.5 * fe.ROLLER_LENGTH * ns / (ns + 1) - max(abs(sc) for sc in centres.values())
-    half_s = min(1.3, 0.99 * room / b_max)
-    ds = fe.grids(p, nx, ns, N, half_x=half_x, half_s=half_s)["inner"].ds
-    # window centres on the common cell lattice (multiples of ds): the roller's mesh layers follow the cell edges
-    # of both contacts, and two lattices offset by a fraction of ds would double the layers with slivers
-    grids = fe.grids(p, nx, ns, N, half_x=half_x, half_s=half_s,
-                     s_centre={c: ds * round(sc / ds) for c, sc in centres.items()})
+    # windows near the CECT pressure centres, on the common cell lattice (fe.grids)
+    grids = fe.grids(p, nx, ns, N, half_x=half_x, half_s=min(1.3, 0.99 * room / b_max), s_centre=centres)
     if progress:
         progress(f"fem: compliances of the roller and both ring segments ({nx} x {ns} cells)")
     tables = fe.compliance(p, grids, mesh, progress=progress)
