@@ -15,8 +15,8 @@ Reported (SI): ``approach`` the rigid approach (m), ``p_max`` (Pa), ``half_lengt
 the contact along the groove (m; sub-cell power-law edges of the lateral load distribution,
 :func:`lateral_extent`), ``angle_span`` its angle on the groove circle (rad), ``adhesion_fraction``,
 ``creepage_x`` = w_x(0, 0)/V_ref (Kalker's sign: the body's slip relative to the ring along x),
-``spin_moment`` about the normal at the nominal point (N m), ``friction_power`` (W), and the body's axle torque sum ((P - C) x t).Y dA (N m; the rolling resistance moment
-that free rolling at F_x = 0 leaves).
+``spin_moment`` about the normal at the nominal point (N m), ``friction_power`` (W), and the body's axle torque
+sum ((P - C) x t).Y dA (N m; the rolling resistance moment that free rolling at F_x = 0 leaves).
 """
 from __future__ import annotations
 
