@@ -160,14 +160,13 @@ class ContactGrid:
         return ContactGrid(self.centre, self.radius, self.m0, self.tau0, self.ex, x, s, self.name)
 
 
-def refined_count(n0: int, factor: float) -> tuple[int, float]:
-    """Cells of a level refined by ``factor`` from ``n0`` coarsest cells: (n, widening). The cell size is the
-    coarsest one's / factor exactly (a constant refinement ratio for the certificates); n is n0 factor rounded up
-    to an odd count (a cell centred on the reference point), so the window widens by n / (n0 factor) (less than
-    two cells)."""
+def refined_count(n0: int, factor: float) -> int:
+    """Cells of a level refined by ``factor`` from ``n0`` coarsest cells: n0 factor rounded up to an odd count (a
+    cell centred on the reference point). The caller widens its window by n / (n0 factor) (less than two cells)
+    so that the cell size is the coarsest one's / factor exactly (a constant refinement ratio for the
+    certificates)."""
     k = int(np.ceil(n0 * factor - 1e-9))
-    n = k if k % 2 else k + 1
-    return n, n / (n0 * factor)
+    return k if k % 2 else k + 1
 
 
 def centred_cells(half: float, n: int, centre: float = 0.0) -> np.ndarray:

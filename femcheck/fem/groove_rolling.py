@@ -122,16 +122,16 @@ def setup(p: dict[str, Any]) -> dict[str, Any]:
 
 
 def _grid(g: dict, p: dict, level: int) -> ContactGrid:
-    """Cells of ``level`` (:func:`femcheck.fem.contact_grid.refined_count`: dx and ds exactly the coarsest
-    level's / ratio^level, odd counts, the window widened by the rounding)."""
+    """Cells of ``level``: odd counts (:func:`femcheck.fem.contact_grid.refined_count`), dx and ds exactly the
+    coarsest level's / ratio^level, the window widened by the rounding."""
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
     f = p["numerics.fem_ratio"] ** level
-    nx, wx = refined_count(p["numerics.fem_nx"], f)
-    ns, ws = refined_count(p["numerics.fem_ns"], f)
+    nx0, ns0 = p["numerics.fem_nx"], p["numerics.fem_ns"]
+    nx, ns = refined_count(nx0, f), refined_count(ns0, f)
     G = np.array([0.0, 0.0, g["rg"] - g["r0"]])
     return ContactGrid(G, g["rg"], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0],
-                       centred_cells(p["numerics.fem_half_x"] * a * wx, nx),
-                       centred_cells(p["numerics.fem_half_s"] * b * ws, ns), "groove")
+                       centred_cells(p["numerics.fem_half_x"] * a * nx / (nx0 * f), nx),
+                       centred_cells(p["numerics.fem_half_s"] * b * ns / (ns0 * f), ns), "groove")
 
 
 def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_extra, tol: float):

@@ -325,12 +325,12 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     levels = []
     for k in range(p["numerics.fem_levels"]):
         f = p["numerics.fem_ratio"] ** k
-        nx, widen_x = refined_count(p["numerics.fem_cells_x"], f)
-        ns, _ = refined_count(p["numerics.fem_cells_s"], f)
+        nx0 = p["numerics.fem_cells_x"]
+        nx, ns = refined_count(nx0, f), refined_count(p["numerics.fem_cells_s"], f)
         if progress:
             progress(f"fem: level {k + 1}/{p['numerics.fem_levels']} ({nx} x {ns} cells per contact)")
         mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, 2e-3, 1, 2)
-        o = _srb_rolling_fem.at_cect_pose(p, r, nx, ns, mesh, progress, half_x=1.35 * widen_x)
+        o = _srb_rolling_fem.at_cect_pose(p, r, nx, ns, mesh, progress, half_x=1.35 * nx / (nx0 * f))
         levels.append({"level": k, "nx": nx, "ns": ns, "h": o["stats"]["dx"], **o["quantities"],
                        **{key: o["stats"][key] for key in ("ds", "n_dofs", "iterations", "residual",
                                                           "speed_iterations", "speed_residual",
