@@ -50,7 +50,10 @@ COVERAGE_TOL = 0.05          # indicator quadrature error is ~1 %; a cell off th
 @dataclass
 class BodyModel:
     """A meshed half body: ``mesh`` (x >= 0), ``material``, ``clamped`` names of fully clamped faces in
-    ``mesh.faces``, ``free`` (no clamp: inertia relief and mean axes), element ``order`` (1 or 2)."""
+    ``mesh.faces``, ``free`` (no clamp: inertia relief and mean axes), element ``order`` (1 or 2), ``thickness``
+    (m, optional): the body's least thickness across its contact zones, so that surface on its far side, at least
+    that far from the contact profile, is never taken for the contact face (a slender crowned body's far side lies
+    closer than the default search depth of :func:`cell_loads`, 5 ds)."""
 
     name: str
     mesh: BodyMesh
@@ -58,6 +61,7 @@ class BodyModel:
     clamped: tuple[str, ...] = ()
     free: bool = False
     order: int = 1
+    thickness: float | None = None
 
 
 @dataclass
@@ -160,6 +164,11 @@ class _Receivers:
         return out.reshape(-1, 3, U.shape[1])
 
 
+def _search_depth(body: BodyModel, grid: ContactGrid) -> float | None:
+    """Depth below the contact profile searched for the contact face: 5 ds, or half the body's thickness."""
+    return None if body.thickness is None else min(5.0 * grid.ds, 0.5 * body.thickness)
+
+
 def _centre_receivers(space, rg: ContactGrid, lags: np.ndarray, lag0: float) -> _Receivers:
     """Displacement at the receiving cells' centres (collocation, as the exact theory)."""
     P = rg.point(lags[:, None], rg.s[None, :]).reshape(-1, 3)          # (n_lag * ns_r, 3)
@@ -170,7 +179,8 @@ def _centre_receivers(space, rg: ContactGrid, lags: np.ndarray, lag0: float) -> 
     return _Receivers(lag0, lags.size, float(np.abs(dist).max()), centre=(E, mirrored, frames))
 
 
-def _average_receivers(space, rg: ContactGrid, lags: np.ndarray, lag0: float) -> _Receivers:
+def _average_receivers(space, rg: ContactGrid, lags: np.ndarray, lag0: float,
+                       nu_max: float | None = None) -> _Receivers:
     """Displacement averaged over the receiving cells (Galerkin): the transpose of the cell loads, per unit
     area. Needs the receiving stations on the lattice k dx (symmetric grids of equal parity)."""
     k = lags / rg.dx
@@ -180,7 +190,7 @@ def _average_receivers(space, rg: ContactGrid, lags: np.ndarray, lag0: float) ->
     kmax = int(np.abs(k).max())
     blocks = []
     for j in range(kmax + 1):
-        W, _ = cell_loads(space, rg.with_cells(rg.x, rg.s), j * rg.dx, half_model=(j == 0))
+        W, _ = cell_loads(space, rg.with_cells(rg.x, rg.s), j * rg.dx, half_model=(j == 0), nu_max=nu_max)
         area = rg.cell_area * (0.5 if j == 0 else 1.0)
         # columns (comp i, cell I) -> rows ordered (cell I, comp i)
         perm = (np.arange(3)[None, :] * rg.ns + np.arange(rg.ns)[:, None]).ravel()
@@ -213,7 +223,7 @@ def body_compliance(body: BodyModel, grids: dict[str, ContactGrid], backend: str
     t0 = time.perf_counter()
     loads, coverage = {}, {}
     for name, g in grids.items():
-        W, cov = cell_loads(space, g, 0.0, half_model=True)
+        W, cov = cell_loads(space, g, 0.0, half_model=True, nu_max=_search_depth(body, g))
         if np.any(np.abs(cov - 1.0) > COVERAGE_TOL):
             bad = np.flatnonzero(np.abs(cov - 1.0) > COVERAGE_TOL)
             raise ValueError(f"{body.name}: cells {bad.tolist()} of grid {name!r} are not wholly on the body's "
@@ -226,7 +236,7 @@ def body_compliance(body: BodyModel, grids: dict[str, ContactGrid], backend: str
             if receivers == "centre":
                 recv[(rn, sn)] = _centre_receivers(space, rg, lags, lag0)
             else:
-                recv[(rn, sn)] = _average_receivers(space, rg, lags, lag0)
+                recv[(rn, sn)] = _average_receivers(space, rg, lags, lag0, _search_depth(body, rg))
     times["transfer_s"] = time.perf_counter() - t0
 
     tables = {k: np.zeros((3, 3, v.n_lags, grids[k[0]].ns, grids[k[1]].ns)) for k, v in recv.items()}

@@ -40,6 +40,7 @@ from ..analytic import hertz
 from ..cect.groove_contact import FREE_ROLLING_TOL, SPIN_NOISE, lateral_extent
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic, effective_modulus
+from ..meshes.layered_bodies import MIN_CROWN_RATIO
 from ..result import ModelResult
 from ..scene import Key
 from ..solvers.convergence import certify
@@ -185,15 +186,15 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     nx, ns = grid.x.size, grid.s.size
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
     r0, rg, kap = g["r0"], g["rg"], g["kappa"]
-    # the layered mesh maps the disk section of radius r0 onto the crown's smaller sections keeping x = a near the
-    # contact line (meshes.layered_bodies._crown_map); that map folds where the crown radius falls below 2/3 r0
-    half_max = float(np.sqrt(g["Rc"] ** 2 - (g["Rc"] - r0 / 3.0) ** 2))
+    # the layered mesh maps the disk section of radius r0 onto the crown's smaller sections; where the crown radius
+    # falls below MIN_CROWN_RATIO r0 its elements would be too flat (meshes.layered_bodies._crown_map)
+    half_max = float(np.sqrt(g["Rc"] ** 2 - (g["Rc"] - (1.0 - MIN_CROWN_RATIO) * r0) ** 2))
     if 0.5 * p["numerics.fem_body_length"] * b > half_max:
         wide = " (the contact spans most of the crown: groove/crown too close to 1 for the FE body)" \
             if 2.0 * half_max / b < 2.2 else ""
         raise InputError("numerics.fem_body_length", f"{p['numerics.fem_body_length']:g} b_H reaches where the "
-                         f"crowned body's radius is below 2/3 of {r0:g} m, which its mesh map cannot follow{wide}; "
-                         f"allowed: [2.2, {2.0 * half_max / b:.3g}] b_H")
+                         f"crowned body's radius is below {MIN_CROWN_RATIO:g} of {r0:g} m, where its mesh cannot "
+                         f"follow{wide}; allowed: [2.2, {2.0 * half_max / b:.3g}] b_H")
     roller = RollerBody(r0, g["Rc"], p["numerics.fem_body_length"] * b, g["m1"])
     G = tuple(float(v) for v in grid.centre)
     axis_point = None if kap == 0 else (0.0, 0.0, -r0 - 1.0 / kap)

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import Elastic
-from ..meshes.layered_bodies import CrownedSpec, RingSpec, cell_layers, crowned_body, grooved_ring
+from ..meshes.layered_bodies import CrownedSpec, RingSpec, cell_layers, crown_rho, crowned_body, grooved_ring
 from .body_compliance import BodyModel, body_compliance
 from .contact_grid import ContactGrid
 from .rolling_contact import RelativeCompliance, relative_compliance
@@ -115,7 +115,8 @@ def fe_compliance(roller: RollerBody, rings: dict[str, RingBody], grids: dict[st
         progress("FE rolling compliance: meshing the roller")
     rm = roller_mesh(roller, grids, mesh)
     t_mesh = time.perf_counter() - t0
-    c1 = body_compliance(BodyModel("roller", rm, roller.material, (), True, mesh.order), grids, backend,
+    thickness = 2.0 * float(crown_rho(0.5 * roller.length, roller.rolling_radius, roller.crown_radius))
+    c1 = body_compliance(BodyModel("roller", rm, roller.material, (), True, mesh.order, thickness), grids, backend,
                          progress=progress)
     c2 = {}
     for name, ring in rings.items():

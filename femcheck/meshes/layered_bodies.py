@@ -36,7 +36,8 @@ import numpy as np
 
 from .block import drop_unused_nodes, node_table
 from .plane import _Gmsh
-from .srb_segments import BodyMesh, _cached
+from .cache import cached
+from .srb_segments import BodyMesh, _read_body, _write_body
 
 
 @dataclass(frozen=True)
@@ -150,6 +151,12 @@ def _orient(points: np.ndarray, tets: np.ndarray) -> np.ndarray:
     return t
 
 
+def _cached(kind: str, spec, build) -> BodyMesh:
+    """``build(spec)`` once per spec and this module's code (:mod:`femcheck.meshes.cache`): the maps above are
+    part of the mesh, so the key is this module's digest (srb_segments' would miss a change to them)."""
+    return cached(kind, spec, __name__, ".npz", lambda: build(spec), _read_body, _write_body)
+
+
 def _body(points: np.ndarray, tets: np.ndarray, contact_nodes: np.ndarray, faces: dict) -> BodyMesh:
     tets = _orient(points, tets)
     bt = _boundary_triangles(tets)
@@ -182,11 +189,26 @@ def crown_rho(y, rolling_radius: float, crown_radius: float):
     return rolling_radius - crown_radius + np.sqrt(crown_radius**2 - np.asarray(y, dtype=float) ** 2)
 
 
+# the cubic map keeps dX/da >= 1 - 3 (1 - k) >= 0.1 down to this k; below it the exponent shrinks (see _crown_map)
+_CUBIC_K = 0.7
+_MIN_SLOPE = 0.1
+# below this ratio of crown to rolling radius the mapped elements are too flat to be of use (aspect > ~10)
+MIN_CROWN_RATIO = 0.1
+
+
 def _crown_map(a, c, k, r):
     """Section point (a, c) of the disk of radius r -> (X, Z) on the disk of radius k r, keeping X = a near the
-    contact generatrices (a << r: X = a (1 + (k - 1)(a/r)^2)) so that the influence cells' edges stay on element
-    faces, with the circle mapped onto the circle: Z = c sqrt((k r)^2 - X^2) / sqrt(r^2 - a^2)."""
-    X = a * (1.0 + (k - 1.0) * (a / r) ** 2)
+    contact generatrices so that the influence cells' edges stay on element faces, with the circle mapped onto
+    the circle: Z = c sqrt((k r)^2 - X^2) / sqrt(r^2 - a^2).
+
+    X = a (1 + (k - 1)(a/r)^(n - 1)), monotone in a when its slope at a = r, 1 - n (1 - k), stays positive: the
+    cubic n = 3 (X = a (1 + O((a/r)^2)) at the contact) for k >= 0.7, and n = 0.9/(1 - k) below, so that the slope
+    never falls under 0.1 (the cubic alone folds the elements near the rim for k < 2/3, reached by a body that
+    extends far along a strongly crowned profile, e.g. groove/crown 1.002)."""
+    k = np.asarray(k, dtype=float)
+    cubic = a * (1.0 + (k - 1.0) * (a / r) ** 2)
+    n = (1.0 - _MIN_SLOPE) / np.maximum(1.0 - k, 1e-300)
+    X = np.where(k >= _CUBIC_K, cubic, a * (1.0 + (k - 1.0) * (a / r) ** np.maximum(n - 1.0, 0.0)))
     den = np.sqrt(np.maximum(r * r - a * a, 0.0))
     xi = np.where(den > 0, c / np.where(den > 0, den, 1.0), 0.0)
     Z = np.clip(xi, -1.0, 1.0) * np.sqrt(np.maximum((k * r) ** 2 - X * X, 0.0))
@@ -195,10 +217,9 @@ def _crown_map(a, c, k, r):
 
 def _crowned(spec: CrownedSpec) -> BodyMesh:
     r, R = spec.rolling_radius, spec.crown_radius
-    if not crown_rho(spec.half_length, r, R) >= 2.0 * r / 3.0:
-        # _crown_map: dX/da = 1 + 3 (k - 1)(a/r)^2 turns negative at a = r when k < 2/3 (folded elements)
-        raise ValueError("the crown radius falls below 2/3 of the rolling radius before the body's end: the "
-                         "section map would fold")
+    if not crown_rho(spec.half_length, r, R) >= MIN_CROWN_RATIO * r:
+        raise ValueError(f"the crowned body's radius falls below {MIN_CROWN_RATIO:g} of the rolling radius before "
+                         "its end: its mapped elements would be too flat")
     sec = SectionSpec("half_disk", r, r, tuple((0.0, float(z) * r) for z in spec.zones), spec.h_contact,
                       spec.grading, spec.h_max, spec.align)
     P, tets = _layered(LayeredSpec(sec, spec.layers))
