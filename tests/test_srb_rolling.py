@@ -56,11 +56,12 @@ def test_table_2_cect_column(table2, mu):
 
 
 def test_tilt_grows_with_friction_and_newton_is_short(table2):
-    """|beta(0.3)| > |beta(0.1)| (item 9); Newton from the nominal start converges in <= 8 iterations per secant
-    step pass (item 14: the counter sums all secant steps, at most 12 here)."""
+    """|beta(0.3)| > |beta(0.1)| (item 9); Newton on pose, speeds and approach converges from the nominal start in
+    <= 8 iterations (item 14; measured 7 and 6 on 61 x 121; with a secant on the approach around a 6-unknown
+    Newton, 8 and 9)."""
     assert abs(table2[0.3][2]["tilt"]) > abs(table2[0.1][2]["tilt"])
     for mu in (0.1, 0.3):
-        assert table2[mu][1].nit <= 12
+        assert table2[mu][1].nit <= 8
 
 
 @pytest.mark.parametrize("mu", [0.1, 0.3])

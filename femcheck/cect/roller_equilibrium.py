@@ -14,9 +14,10 @@ Method:
   contact solve does not converge, counts as a failed trial.
 - Grids fixed within an iteration, re-centred on the pressure centres between iterations (on the cell lattice,
   :class:`femcheck.cect.roller_state.GridSpec`).
-- Load: the approach delta of the inner ring (spec §2.2) is solved by a secant on log N_I versus log delta so that
-  the inner normal force sum p_n dA equals the target N within ``load_rtol`` (1e-4); each secant step re-solves
-  the equilibrium from the previous one (warm start and its Jacobian).
+- Load: the approach delta of the inner ring (spec §2.2) is the seventh unknown and the inner normal force
+  sum p_n dA = N (within ``load_rtol``, 1e-4; scaled by it) the seventh equation, so one Newton loop finds the
+  pose, the speeds and the approach together (a secant on delta around a converged 6-unknown Newton took 9
+  iterations at mu = 0.3 against 6 for the first solve alone; the 7 x 7 Jacobian costs one contact solve more).
 - Configurations (spec §6, paper §4.3): 1 from the nominal start; 2 from skewed starts (CONFIG2_STARTS: both
   skew signs, |gamma| 2 and 4 mrad with a tilt and a larger axial offset) whose converged state must differ from configuration 1 (by more than 0.5 mrad in skew): when
   no such state is found the result says so (``status`` 2, ``success`` False), never a silent fallback. A skewed
@@ -41,7 +42,8 @@ from .roller_state import (N_UNKNOWNS, RESIDUALS, UNKNOWNS, GridSpec, Numerics, 
                            check_problem, evaluate, fitted, nominal_start)
 
 FD_STEPS = np.array([1e-9, 1e-9, 5e-8, 5e-8, 1e-7, 1e-7])    # m, m, rad, rad, relative, relative (spec §6)
-UNKNOWN_SCALE = np.array([1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3])  # um, urad, 1e-3 relative (spec §6)
+DELTA_STEP = 1e-9                                               # m, the approach's difference step (as d_Y, d_Z)
+UNKNOWN_SCALE = np.array([1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-6])  # um, urad, 1e-3 relative, um (spec §6)
 # skewed starts of configuration 2 (skew gamma rad, tilt beta rad, extra axial offset d_y m), tried in order, both
 # skew signs (Fig. 19: gamma_p = -gamma down to -4 mrad, tilt to -0.4 mrad, larger d_y than configuration 1)
 CONFIG2_STARTS = ((2e-3, -2e-4, 4e-5), (-2e-3, -2e-4, 4e-5), (4e-3, -4e-4, 5e-5), (-4e-3, -4e-4, 5e-5))
@@ -52,7 +54,7 @@ DISTINCT_SKEW = 5e-4         # rad: a configuration-2 state must differ from con
 class EquilibriumResult:
     """A roller equilibrium (scipy.optimize style). ``x`` the state (UNKNOWNS), ``success``, ``status``
     (0 converged, 1 Newton did not converge, 2 configuration not found), ``message``, ``nit`` Newton
-    iterations (all secant steps), ``njev`` full Jacobians, ``nfev`` state evaluations (each: both contacts),
+    iterations, ``njev`` full Jacobians, ``nfev`` state evaluations (each: both contacts),
     ``residual`` (6, N and N m along e_x, e_y, e_z), ``scaled_residual`` (by tol_F, tol_M), ``approach`` delta
     (m), ``state`` the :class:`RollerState` at x, ``configuration`` (1 or 2), ``history`` per iteration,
     ``time_s``, ``state_changes`` the largest number of elements that changed state in a Jacobian column."""
@@ -105,16 +107,21 @@ def _state_changes(a: RollerState, b: RollerState) -> int:
     return n
 
 
-def jacobian(problem: RollerProblem, num: Numerics, grids: GridSpec, base: RollerState,
-             count: _Counter | None = None) -> np.ndarray:
-    """dR_scaled/dx by one-sided differences (6 x 6; columns in the units of x) at ``base`` on ``grids``."""
+def jacobian(problem: RollerProblem, num: Numerics, grids: GridSpec, base: RollerState, load: float,
+             load_rtol: float, count: _Counter | None = None) -> np.ndarray:
+    """d(residual)/d(x, delta) by one-sided differences (7 x 7; columns in the units of x and delta) at ``base``
+    on ``grids``; rows: the six scaled equilibrium residuals and the scaled load residual (:func:`_residual`)."""
     h = _steps(base.x)
-    J = np.empty((N_UNKNOWNS, N_UNKNOWNS))
-    for k in range(N_UNKNOWNS):
-        xk = base.x.copy()
-        xk[k] += h[k]
-        sk = evaluate(problem, num, grids, xk, base.delta, warm=base, reuse_normal=k >= 4)
-        J[:, k] = (sk.scaled - base.scaled) / h[k]
+    r0 = _residual(base, load, load_rtol)
+    J = np.empty((N_UNKNOWNS + 1, N_UNKNOWNS + 1))
+    for k in range(N_UNKNOWNS + 1):
+        xk, dk = base.x.copy(), base.delta
+        if k < N_UNKNOWNS:
+            xk[k] += h[k]
+        else:
+            dk += DELTA_STEP
+        sk = evaluate(problem, num, grids, xk, dk, warm=base, reuse_normal=4 <= k < N_UNKNOWNS)
+        J[:, k] = (_residual(sk, load, load_rtol) - r0) / (h[k] if k < N_UNKNOWNS else DELTA_STEP)
         if count is not None:
             count.nfev += 1
             count.changes = max(count.changes, _state_changes(base, sk))
@@ -123,53 +130,59 @@ def jacobian(problem: RollerProblem, num: Numerics, grids: GridSpec, base: Rolle
     return J
 
 
+def _residual(state: RollerState, load: float, load_rtol: float) -> np.ndarray:
+    """The six scaled equilibrium residuals and the load residual (N_I/N - 1)/load_rtol: converged when all seven
+    are below 1 in magnitude."""
+    return np.append(state.scaled, (state.inner_load / load - 1.0) / load_rtol)
+
+
 def _centres(state: RollerState) -> dict:
     return {c: state.contacts[c].result.pressure_centre for c in state.contacts}
 
 
-def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarray, delta: float,
-           warm: RollerState | None = None, J0: np.ndarray | None = None, max_iter: int = 12,
-           max_halvings: int = 6, count: _Counter | None = None):
-    """Damped Newton / Broyden on R(x) = 0 at a fixed approach ``delta`` (module docstring). Returns
-    (state, J, grids, converged)."""
+def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarray, delta0: float, load: float,
+           load_rtol: float = 1e-4, J0: np.ndarray | None = None, max_iter: int = 12, max_halvings: int = 6,
+           count: _Counter | None = None):
+    """Damped Newton / Broyden on the seven equations (six of equilibrium, the inner load) in the seven unknowns
+    (x, delta) (module docstring). Returns (state, J, grids, converged)."""
     count = _Counter() if count is None else count
-    if warm is not None:
-        grids = grids.recentred(_centres(warm), num.ns)
-        state = evaluate(problem, num, grids, x0, delta, warm=warm)
-    else:
-        state, grids = fitted(problem, num, grids.predicted(problem, x0, num.ns), x0, delta)
+    state, grids = fitted(problem, num, grids.predicted(problem, x0, num.ns), x0, delta0)
     count.nfev += 1
+    r = _residual(state, load, load_rtol)
     J = J0
     fresh = False
     for _ in range(max_iter):
-        if state.norm < 1.0:
+        if np.abs(r).max() < 1.0:
             return state, J, grids, True
         if J is None:
-            J = jacobian(problem, num, grids, state, count)
+            J = jacobian(problem, num, grids, state, load, load_rtol, count)
             fresh = True
         count.nit += 1
-        step = np.linalg.solve(J * UNKNOWN_SCALE, -state.scaled) * UNKNOWN_SCALE
+        step = np.linalg.solve(J * UNKNOWN_SCALE, -r) * UNKNOWN_SCALE
+        z = np.append(state.x, state.delta)
         lam, new = 1.0, None
         for _ in range(max_halvings + 1):
+            zt = z + lam * step
             try:
-                trial = evaluate(problem, num, grids, state.x + lam * step, delta, warm=state)
+                trial = evaluate(problem, num, grids, zt[:N_UNKNOWNS], float(zt[-1]), warm=state)
                 count.nfev += 1
-                if trial.norm < state.norm:
+                rt = _residual(trial, load, load_rtol)
+                if np.abs(rt).max() < np.abs(r).max():
                     new = trial
                     break
             except (GridTooSmall, ConvergenceError):      # a contact outside its window, or a trial state
                 pass                                        # its solver cannot handle: a failed trial, halve
             lam *= 0.5
-        count.history.append({"delta": delta, "norm": state.norm, "lambda": lam if new is not None else 0.0,
-                              "jacobian": "fd" if fresh else "broyden"})
+        count.history.append({"delta": state.delta, "norm": float(np.abs(r).max()),
+                              "lambda": lam if new is not None else 0.0, "jacobian": "fd" if fresh else "broyden"})
         if new is None:
             if fresh:
                 return state, J, grids, False
             J, fresh = None, False          # a stale (Broyden) Jacobian: recompute and retry
             continue
-        ratio = new.norm / state.norm
-        dx = new.x - state.x
-        J = J + np.outer(new.scaled - state.scaled - J @ dx, dx) / (dx @ dx)      # Broyden's good update
+        ratio = np.abs(rt).max() / np.abs(r).max()
+        dz = np.append(new.x, new.delta) - z
+        J = J + np.outer(rt - r - J @ dz, dz) / (dz @ dz)      # Broyden's good update
         fresh = False
         if ratio > 0.5:
             J = None
@@ -177,15 +190,16 @@ def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarra
         g2 = grids.recentred(_centres(new), num.ns)
         if g2 != grids:
             grids = g2
-            new = evaluate(problem, num, grids, new.x, delta, warm=new)
+            new = evaluate(problem, num, grids, new.x, new.delta, warm=new)
             count.nfev += 1
-        state = new
-    return state, J, grids, state.norm < 1.0
+            rt = _residual(new, load, load_rtol)
+        state, r = new, rt
+    return state, J, grids, bool(np.abs(r).max() < 1.0)
 
 
 def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarray | None = None,
                 delta0: float | None = None, configuration: int = 1, load_rtol: float = 1e-4,
-                max_secant: int = 12, max_iter: int = 12, max_halvings: int = 6) -> EquilibriumResult:
+                max_iter: int = 12, max_halvings: int = 6) -> EquilibriumResult:
     """The roller equilibrium with the inner normal force equal to ``problem.load`` (module docstring).
 
     ``x0``/``delta0``: a start (continuation); default the nominal start (configuration 1) or the skewed starts
@@ -197,15 +211,15 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
     xn, dn = nominal_start(problem)
     if configuration == 1 or x0 is not None:
         return _at_load(problem, num, xn if x0 is None else x0, dn if delta0 is None else delta0, load_rtol,
-                        max_secant, max_iter, configuration, t0, max_halvings)
-    ref = _at_load(problem, num, xn, dn, load_rtol, max_secant, max_iter, 1, t0)
+                        max_iter, configuration, t0, max_halvings)
+    ref = _at_load(problem, num, xn, dn, load_rtol, max_iter, 1, t0)
     base, d0 = (ref.x, ref.approach) if ref.success else (xn, dn)
     tried = []
     for skew, tilt, dy in CONFIG2_STARTS:
         xs = base.copy()
         xs[2], xs[3] = tilt, skew
         xs[0:2] += dy * problem.bearing.e_y[1:]
-        r = _at_load(problem, num, xs, d0, load_rtol, max_secant, max_iter, 2, t0)
+        r = _at_load(problem, num, xs, d0, load_rtol, max_iter, 2, t0)
         tried.append(r)
         if r.success and (not ref.success or abs(r.x[3] - ref.x[3]) > DISTINCT_SKEW):
             return replace(r, time_s=time.perf_counter() - t0)
@@ -216,42 +230,22 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
                    % (len(tried), "returned to configuration 1" if back else "did not converge"))
 
 
-def _at_load(problem, num, x0, delta0, load_rtol, max_secant, max_iter, configuration, t0,
+def _at_load(problem, num, x0, delta0, load_rtol, max_iter, configuration, t0,
              max_halvings: int = 6) -> EquilibriumResult:
     count = _Counter()
     grids = GridSpec.of(problem, num)
-    N = problem.load
-    state, J, x, delta = None, None, np.asarray(x0, dtype=float), float(delta0)
-    pts: list[tuple[float, float]] = []
-    converged = False
-    for _ in range(max_secant):
-        try:
-            state, J, grids, converged = newton(problem, num, grids, x, delta, warm=state, J0=J, max_iter=max_iter,
-                                                max_halvings=max_halvings, count=count)
-        except GridTooSmall as err:
-            return _result(None, False, 1, f"a contact left its window ({', '.join(err.edges)})", count, grids,
-                           delta, configuration, t0, x)
-        except ConvergenceError as err:
-            return _result(None, False, 1, f"a contact solve failed ({err})", count, grids, delta, configuration,
-                           t0, x)
-        if not converged:
-            break
-        NI = state.inner_load
-        if abs(NI / N - 1.0) < load_rtol:
-            return _result(state, True, 0, "converged", count, grids, delta, configuration, t0)
-        pts.append((np.log(delta), np.log(NI)))
-        if len(pts) >= 2 and pts[-1][1] != pts[-2][1]:
-            (u0, f0), (u1, f1) = pts[-2], pts[-1]
-            u = u1 + (np.log(N) - f1) * (u1 - u0) / (f1 - f0)
-        else:
-            u = pts[-1][0] + (np.log(N) - pts[-1][1]) / 1.5        # Hertz: N ~ delta^1.5
-        new_delta = float(np.exp(u))
-        # predictor: the roller centre follows about half the ring's extra approach (two similar contacts)
-        x = state.x.copy()
-        x[0:2] += 0.5 * (new_delta - delta) * problem.approach_vector[1:]
-        delta = new_delta
-    msg = "Newton did not converge" if not converged else "the approach secant did not reach the load"
-    return _result(state, False, 1, msg, count, grids, delta, configuration, t0)
+    x, delta = np.asarray(x0, dtype=float), float(delta0)
+    try:
+        state, _, grids, converged = newton(problem, num, grids, x, delta, problem.load, load_rtol,
+                                            max_iter=max_iter, max_halvings=max_halvings, count=count)
+    except GridTooSmall as err:
+        return _result(None, False, 1, f"a contact left its window ({', '.join(err.edges)})", count, grids,
+                       delta, configuration, t0, x)
+    except ConvergenceError as err:
+        return _result(None, False, 1, f"a contact solve failed ({err})", count, grids, delta, configuration, t0, x)
+    if converged:
+        return _result(state, True, 0, "converged", count, grids, state.delta, configuration, t0)
+    return _result(state, False, 1, "Newton did not converge", count, grids, state.delta, configuration, t0)
 
 
 def _result(state, success, status, message, count, grids, delta, configuration, t0, x=None) -> EquilibriumResult:

@@ -78,10 +78,10 @@ def trace(branch: Branch, keep_last: bool = False) -> dict:
         pn = replace(pr, load=N_new)
         x0 = r.x
         d0 = r.approach * (N_new / N) ** (2.0 / 3.0)
-        # a continuation step starts next to its solution: 6 Newton iterations are plenty (2-5 when it exists),
-        # and a failing step (past the fold) should not cost more
-        rn = equilibrium(pn, branch.numerics, x0=x0, delta0=d0, configuration=branch.configuration, max_iter=6,
-                         max_secant=6, max_halvings=4)
+        # a continuation step starts next to its solution: 8 Newton iterations (pose, speeds and approach) are
+        # plenty, and a failing step (past the fold) should not cost more
+        rn = equilibrium(pn, branch.numerics, x0=x0, delta0=d0, configuration=branch.configuration, max_iter=8,
+                         max_halvings=4)
         if rn.success and abs(rn.x[3] - r.x[3]) <= JUMP_SKEW * max(1.0, step / branch.step):
             out["points"].append(point(pn, rn))
             N, r, pr = N_new, rn, pn
