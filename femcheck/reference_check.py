@@ -101,15 +101,17 @@ def compare_coarse(stored: ModelResult, fresh: ModelResult, rtol: float,
 
 
 def check(scene_name: str, model: str, rtol: float = 1e-6, stored: ModelResult | None = None,
-          coarse: dict | None = None) -> CoarseCheck:
+          coarse: dict | None = None, params: dict | None = None) -> CoarseCheck:
     """Re-solve the coarsest level of ``model`` of the built-in scene ``scene_name`` and compare it with the
     stored reference for the current key (or with ``stored``, e.g. an older file, to see what a change moved).
     ``coarse``: the overrides that make the run its coarsest level (default: the kind's DEPENDS[model]['coarse'];
-    without either the whole model is re-solved)."""
-    sc = load_scene(scene_name)
+    without either the whole model is re-solved). ``params``: overrides of the scene that a second stored
+    reference of it was solved with (e.g. friction.mu = 0.3 of srb-rolling)."""
+    sc = load_scene(scene_name, params or {})
     dep = problem(sc.kind).DEPENDS[model]
     k = model_key(sc, model)
-    out = CoarseCheck(scene_name, model, k, f"femcheck run {scene_name} --models {model} --rebuild")
+    sets = "".join(f" --set {key}={v}" for key, v in (params or {}).items())
+    out = CoarseCheck(scene_name, model, k, f"femcheck run {scene_name}{sets} --models {model} --rebuild")
     out.stored = stored if stored is not None else references.load(sc.kind, model, k)
     if out.stored is None:
         return out
