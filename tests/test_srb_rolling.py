@@ -159,6 +159,20 @@ def test_configuration_2_absent_is_reported():
 
 
 @pytest.mark.slow
+def test_configuration_1_absent_is_reported():
+    """mu = 1 at 5.5 kN: configuration 1 does not exist there (its fold rises with mu: 2.4 kN at mu 0.2, 3.2 kN at
+    0.3) and Newton from the nominal start converges onto a configuration-2-like state (skew about 5 mrad; every
+    configuration-1 state of Fig. 17 has |skew| <= 0.34 mrad): status 2, the cect model skipped with the reason,
+    not a state under configuration 1's name."""
+    sc = load_scene("srb-rolling", {"friction.mu": 1.0})          # 61 x 121 (on 41 x 81 Newton does not converge)
+    r = kind.solved(sc.params)
+    assert r.status == 2 and not r.success and "configuration 1 not found" in r.message
+    assert abs(r.x[3]) > 2e-3
+    res = kind.cect(sc)
+    assert res.status == "skipped" and "configuration 1" in res.error
+
+
+@pytest.mark.slow
 def test_grid_study():
     """Item 10: 41 x 81 -> 61 x 121 -> 81 x 161 changes d_y and sum f_lat by < 3 % (mu = 0.1)."""
     vals = []

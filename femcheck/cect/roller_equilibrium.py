@@ -23,7 +23,9 @@ Method:
   no such state is found the result says so (``status`` 2, ``success`` False), never a silent fallback. A skewed
   start at a load where both configurations exist can also land on the unstable middle branch between the two
   folds (4 kN, mu = 0.3: skew 1.1 mrad instead of Fig. 19's 4 mrad); the scene therefore follows configuration 2
-  from a low load (:func:`femcheck.cect.roller_sweep.configuration_2`).
+  from a low load (:func:`femcheck.cect.roller_sweep.configuration_2`). Where configuration 1 does not exist,
+  Newton from the nominal start can land on configuration 2 (mu = 1, 5.5 kN): a nominal-start state with |skew|
+  beyond DISTINCT_SKEW is reported as configuration 1 not found (status 2), never under its name.
 
 Results as scipy.optimize: :class:`EquilibriumResult` (``success``, ``status``, ``message``, ``nit``, the
 residual per component, the state). Non-convergence of the Newton loop gives status 1 (not converged) with the
@@ -47,7 +49,7 @@ UNKNOWN_SCALE = np.array([1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-6])  # um, urad
 # skewed starts of configuration 2 (skew gamma rad, tilt beta rad, extra axial offset d_y m), tried in order, both
 # skew signs (Fig. 19: gamma_p = -gamma down to -4 mrad, tilt to -0.4 mrad, larger d_y than configuration 1)
 CONFIG2_STARTS = ((2e-3, -2e-4, 4e-5), (-2e-3, -2e-4, 4e-5), (4e-3, -4e-4, 5e-5), (-4e-3, -4e-4, 5e-5))
-DISTINCT_SKEW = 5e-4         # rad: a configuration-2 state must differ from configuration 1 by this much in skew
+DISTINCT_SKEW = 5e-4         # rad: configurations 1 and 2 differ by this much in skew at least (module docstring)
 
 
 @dataclass
@@ -141,7 +143,7 @@ def _centres(state: RollerState) -> dict:
 
 
 def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarray, delta0: float, load: float,
-           load_rtol: float = 1e-4, J0: np.ndarray | None = None, max_iter: int = 12, max_halvings: int = 6,
+           load_rtol: float = 1e-4, J0: np.ndarray | None = None, max_iter: int = 16, max_halvings: int = 6,
            count: _Counter | None = None):
     """Damped Newton / Broyden on the seven equations (six of equilibrium, the inner load) in the seven unknowns
     (x, delta) (module docstring). Returns (state, J, grids, converged)."""
@@ -199,7 +201,7 @@ def newton(problem: RollerProblem, num: Numerics, grids: GridSpec, x0: np.ndarra
 
 def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarray | None = None,
                 delta0: float | None = None, configuration: int = 1, load_rtol: float = 1e-4,
-                max_iter: int = 12, max_halvings: int = 6) -> EquilibriumResult:
+                max_iter: int = 16, max_halvings: int = 6) -> EquilibriumResult:
     """The roller equilibrium with the inner normal force equal to ``problem.load`` (module docstring).
 
     ``x0``/``delta0``: a start (continuation); default the nominal start (configuration 1) or the skewed starts
@@ -210,8 +212,16 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
     t0 = time.perf_counter()
     xn, dn = nominal_start(problem)
     if configuration == 1 or x0 is not None:
-        return _at_load(problem, num, xn if x0 is None else x0, dn if delta0 is None else delta0, load_rtol,
-                        max_iter, configuration, t0, max_halvings)
+        r = _at_load(problem, num, xn if x0 is None else x0, dn if delta0 is None else delta0, load_rtol,
+                     max_iter, configuration, t0, max_halvings)
+        if configuration == 1 and x0 is None and r.success and abs(r.x[3]) > DISTINCT_SKEW:
+            # Newton left the nominal start's branch: where configuration 1 does not exist (high mu, low N: its
+            # fold) it can land on configuration 2 (mu = 1, 5.5 kN: skew 5.0 mrad); every configuration-1 state
+            # of Fig. 17 has |skew| <= 0.34 mrad, every configuration-2 state >= 2.1 mrad
+            return replace(r, success=False, status=2, message="configuration 1 not found: Newton from the "
+                           f"nominal start reached skew {r.x[3] * 1e3:.2f} mrad, beyond configuration 1's "
+                           f"{DISTINCT_SKEW * 1e3:g} mrad (another branch)")
+        return r
     ref = _at_load(problem, num, xn, dn, load_rtol, max_iter, 1, t0)
     base, d0 = (ref.x, ref.approach) if ref.success else (xn, dn)
     tried = []

@@ -215,7 +215,7 @@ def cect(scene: Scene, progress=None) -> ModelResult:
     """The roller equilibrium with conformal CECT contacts."""
     p = scene.params
     if progress:
-        progress("cect: roller equilibrium (6 unknowns), conformal CECT on both contacts")
+        progress("cect: roller equilibrium (pose, speeds, approach), conformal CECT on both contacts")
     r = solved(p)
     if r.status == 2:
         return _not_found("cect", r)
@@ -233,7 +233,7 @@ def cect(scene: Scene, progress=None) -> ModelResult:
              "n_elements": 2 * p["numerics.conformal_cells_x"] * p["numerics.conformal_cells_s"],
              "normal_forces": {c: r.state.contacts[c].result.normal_force for c in sb.CONTACTS},
              "time_s": r.time_s,
-             "solver": "damped Newton/Broyden (FD Jacobian) on 6 unknowns + secant on the ring approach; "
+             "solver": "damped Newton/Broyden (FD Jacobian) on 7 unknowns (pose, speeds, ring approach); "
                        "conformal CECT per contact"}
     return ModelResult("cect", quantities=q, stats=stats, fields=out.fields(r.state))
 
