@@ -3,8 +3,9 @@ spec §A.5; Venner & Lubrecht 2000 ch. 17).
 
 Lines run along X, the direction of the strong coupling. Per node the row type follows the largest face
 coefficient xi = max eps_face/h^2:
-- xi > XI_LIMIT = 0.3 steady, XI_LIMIT_TRANSIENT = 1.2 transient (inlet, outlet: Poiseuille-dominated) or a node
-  whose 5-point star is not pressurised: a Gauss-Seidel row, P <- P + 0.4 delta;
+- xi > 0.3 (inlet, outlet: Poiseuille-dominated) or a node whose 5-point star is not pressurised: a
+  Gauss-Seidel row, P <- P + omega delta, omega = 0.4 steady and omega_T = min(0.4, 0.15 sqrt(hT/h_ref)),
+  h_ref = 1/64, in a transient (hT the time step, = the finest mesh size; see below);
 - otherwise (high-pressure zone, where the film is almost rigid in P): a distributive Jacobi row, P_ij += 0.2 delta
   and each of the four neighbours -= 0.2 delta/4, which makes the change nearly film-neutral.
 The line matrix is the derivative of Q - W with respect to the line's unknowns, with the elastic film coupling
@@ -13,20 +14,25 @@ distributed kernel dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 (Jac
 i-2 ... i+2 are not all pressurised keep the diagonal only (cavitation boundary). Cavitation: P >= 0 after every
 update (Reynolds / Swift-Stieber condition by complementarity).
 
-Why the transient switches later (measured, issue 14). In the steady equation the elastic film enters only
-through the wedge d(rho H)/dX: the kernel is differenced along the line, its smooth far field cancels, and the six
-line points of the line matrix carry the coupling. With the NU2 time term (time step = mesh size, and the h > hT
-branch on the coarse grids) the new time level enters un-differenced, (1.5/hT) rho H: a first-kind integral
-operator whose far field (K_{m,l} ~ h/sqrt(m^2 + l^2)) the line matrix does not see. A zebra colour updates all its
-lines at once with the film of the others frozen, so for an error smooth along the lines and alternating from line
-to line the same-colour lines j +- 2, j +- 4 ... add film changes the line solve did not count, and a Gauss-Seidel
-row over-corrects unless the Poiseuille term (xi) dominates. Measured with fine-grid relaxation alone on the
-transient operator (smooth steady start, perturbed by 1e-4, Phi = 0): with the steady switch 0.3 the mean scaled
-residual grows x136 in 12 sweeps at M = 20, L = 8, 129^2 and x1.3e4 at M = 50, L = 8, 257^2 (the growing mode:
-smooth along X, sign alternating line to line, in the contact where xi = 0.27-0.6); the critical switch is
-0.4-0.5 on both grids (0.4: still x18 / x28; 0.5: x0.18 / x0.65), and 1.2 (a factor 2.4 above) smooths at
-x0.38 / x0.54 against x0.26-0.49 for the stable steady-switch cases. Distributive rows, whose change is nearly
-film-neutral (kernel dK decays as a dipole), are stable there. The steady relaxation is unchanged.
+Why the transient Gauss-Seidel rows are under-relaxed more (measured, issue 14). In the steady equation the
+elastic film enters only through the wedge d(rho H)/dX: the kernel is differenced along the line, its smooth far
+field cancels, and the six line points of the line matrix carry the coupling. With the NU2 time term (time step =
+mesh size; the h > hT branch on the coarse grids) the new time level enters un-differenced, (1.5/hT) rho H: a
+first-kind integral operator whose far field (K_{m,l} ~ h/sqrt(m^2 + l^2)) the line matrix does not see. A zebra
+colour updates all its lines at once with the film of the others frozen, so for an error smooth along the lines
+the same-colour lines and the far part of the own line add film changes the line solve did not count: the
+Gauss-Seidel row over-corrects by a factor that grows as the grid is refined, and diverges once omega times it
+exceeds 2. Measured with fine-grid relaxation alone on the transient operator (smooth steady start perturbed by
+1e-4, 12 sweeps, domain [-2.5, 1.5] b): with omega = 0.4 the mean scaled residual grows x136 (M = 20, L = 8,
+129^2), x276 (M = 100, L = 3, 129^2), x1.3e4 (M = 50, L = 8, 257^2), x5.0e3 (M = 100, L = 3, 257^2); the growing
+error is smooth along X, in the contact where the rows are Gauss-Seidel. The critical omega falls with the mesh
+size: > 0.4 on 65^2, about 0.3 on 129^2, 0.22-0.25 on 257^2 (0.25: still x5.2 and x1.7 at M = 100, L = 3 and
+M = 50, L = 8), i.e. roughly as sqrt(h). omega_T keeps a factor of about 1.4-1.5 below it on every grid
+(0.21 on 129^2, 0.15 on 257^2, 0.11 on 513^2 by the same trend, which is not measured). Raising the switch
+instead (distributive rows up to xi = 1.2) cured M = 50 and 100 at L = 8 but not M = 100, L = 3 (xi = 1-3.6 in
+the contact there; a switch at 2.4 was stable but smoothed only x0.64 in 12 sweeps). The distributive rows are
+stable (their change is nearly film-neutral: the kernel dK decays as a dipole) and keep omega = 0.3. The steady
+relaxation is unchanged.
 
 Vectorised by zebra ordering: all lines of one parity are solved together as one banded system (lines do not
 couple inside a colour, so the stacked matrix keeps bandwidth (3, 2)), then the film is recomputed and the other
@@ -40,9 +46,17 @@ from scipy.linalg import solve_banded
 from .reynolds import operator, time_weights
 
 XI_LIMIT = 0.3
-XI_LIMIT_TRANSIENT = 1.2
+OMEGA_GS_TRANSIENT = 0.15     # at hT = H_REF, scaled as sqrt(hT / H_REF)
+H_REF = 1.0 / 64.0
 OMEGA_GS = 0.4
 OMEGA_JA = 0.3
+
+
+def omega_gs(ht: float | None) -> float:
+    """Under-relaxation of the Gauss-Seidel rows: 0.4 steady, min(0.4, 0.15 sqrt(hT/h_ref)) with the time term."""
+    if ht is None:
+        return OMEGA_GS
+    return min(OMEGA_GS, OMEGA_GS_TRANSIENT * np.sqrt(ht / H_REF))
 
 
 def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:
@@ -73,7 +87,7 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
     xi = np.maximum(np.maximum(eE, eW), np.maximum(eN, eS))
     pos = P > 0
     star = (pos[1:n, J] & pos[2:n + 1, J] & pos[0:n - 1, J] & pos[1:n, J + 1] & pos[1:n, J - 1]).T
-    ja = (xi <= (XI_LIMIT if ht is None else XI_LIMIT_TRANSIENT)) & star
+    ja = (xi <= XI_LIMIT) & star
     # rows i-2 .. i+2 pressurised (points outside the grid count as not pressurised)
     padded = np.zeros((n + 5, J.size), dtype=bool)
     padded[2:n + 3] = pos[:, J]
@@ -113,7 +127,7 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
         else:
             ab[2 - m, 0:N + m] = A[-m:N]
     delta = solve_banded((3, 2), ab, res[ij].T.ravel(), check_finite=False).reshape(J.size, ni)
-    upd = np.where(~ja, OMEGA_GS * delta, OMEGA_JA * delta)
+    upd = np.where(~ja, omega_gs(ht) * delta, OMEGA_JA * delta)
     P[ij] += upd.T
     dj = np.where(ja, 0.25 * OMEGA_JA * delta, 0.0).T      # distribution to the four neighbours
     if dj.any():
