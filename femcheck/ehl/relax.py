@@ -46,17 +46,19 @@ from scipy.linalg import solve_banded
 from .reynolds import operator, time_weights
 
 XI_LIMIT = 0.3
-OMEGA_GS_TRANSIENT = 0.15     # at hT = H_REF, scaled as sqrt(hT / H_REF)
+OMEGA_GS_TRANSIENT = 0.15     # at h = H_REF, scaled as sqrt(h / H_REF)
 H_REF = 1.0 / 64.0
+XI_FREE = 10.0                # transient Gauss-Seidel rows above this xi keep OMEGA_GS
 OMEGA_GS = 0.4
 OMEGA_JA = 0.3
 
 
-def omega_gs(ht: float | None) -> float:
-    """Under-relaxation of the Gauss-Seidel rows: 0.4 steady, min(0.4, 0.15 sqrt(hT/h_ref)) with the time term."""
+def omega_gs(xi: np.ndarray, h: float, ht: float | None) -> np.ndarray | float:
+    """Under-relaxation of the Gauss-Seidel rows with the largest face coefficient xi on a grid of mesh size h:
+    0.4 steady; with the time term min(0.4, 0.15 sqrt(h/h_ref)) where xi <= 10, 0.4 above."""
     if ht is None:
         return OMEGA_GS
-    return min(OMEGA_GS, OMEGA_GS_TRANSIENT * np.sqrt(ht / H_REF))
+    return np.where(xi > XI_FREE, OMEGA_GS, min(OMEGA_GS, OMEGA_GS_TRANSIENT * np.sqrt(h / H_REF)))
 
 
 def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:
@@ -127,7 +129,7 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
         else:
             ab[2 - m, 0:N + m] = A[-m:N]
     delta = solve_banded((3, 2), ab, res[ij].T.ravel(), check_finite=False).reshape(J.size, ni)
-    upd = np.where(~ja, omega_gs(ht) * delta, OMEGA_JA * delta)
+    upd = np.where(~ja, omega_gs(xi, h, ht) * delta, OMEGA_JA * delta)
     P[ij] += upd.T
     dj = np.where(ja, 0.25 * OMEGA_JA * delta, 0.0).T      # distribution to the four neighbours
     if dj.any():
