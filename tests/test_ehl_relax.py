@@ -34,7 +34,7 @@ def transient_sweeps(M, L, grid, sweeps):
 def test_transient_line_relaxation_smooths(M, L, old_growth):
     """129^2, where the contact rows are Gauss-Seidel (xi = eps/h^2 = 0.27-0.6 at M = 20, L = 8; 1-3.6 at M = 100,
     L = 3): with the steady under-relaxation 0.4 the error that is smooth along the lines grows (``old_growth``
-    in 12 sweeps, measured); with omega_T = 0.21 (129^2) the residual falls (x0.013, x0.063). A working smoother
+    in 12 sweeps, measured); with omega_T = 0.21 (129^2) the residual falls (x0.010, x0.062). A working smoother
     must at least halve it in 12 sweeps, and never let it grow by more than rounding in a sweep after the first
     three."""
     res = transient_sweeps(M, L, 129, 12)
