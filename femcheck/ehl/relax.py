@@ -4,7 +4,8 @@ spec §A.5; Venner & Lubrecht 2000 ch. 17).
 Lines run along X, the direction of the strong coupling. Per node the row type follows the largest face
 coefficient xi = max eps_face/h^2:
 - xi > 0.3 (inlet, outlet: Poiseuille-dominated) or a node whose 5-point star is not pressurised: a
-  Gauss-Seidel row, P <- P + 0.4 delta;
+  Gauss-Seidel row, P <- P + omega delta, omega = 0.4 steady; in a transient omega_T = min(0.4, 0.15 sqrt(h/h_ref))
+  (h the level's mesh size, h_ref = 1/64) where xi <= 10, 0.4 above (see below);
 - otherwise (high-pressure zone, where the film is almost rigid in P): a distributive Jacobi row, P_ij += 0.2 delta
   and each of the four neighbours -= 0.2 delta/4, which makes the change nearly film-neutral.
 The line matrix is the derivative of Q - W with respect to the line's unknowns, with the elastic film coupling
@@ -12,6 +13,31 @@ of the six nearest line points (i-3 ... i+2) through the cell kernel K_{m,0} (Ga
 distributed kernel dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 (Jacobi rows). Rows whose points
 i-2 ... i+2 are not all pressurised keep the diagonal only (cavitation boundary). Cavitation: P >= 0 after every
 update (Reynolds / Swift-Stieber condition by complementarity).
+
+Why the transient Gauss-Seidel rows are under-relaxed more (measured, issue 14). In the steady equation the
+elastic film enters only through the wedge d(rho H)/dX: the kernel is differenced along the line, its smooth far
+field cancels, and the six line points of the line matrix carry the coupling. With the NU2 time term (time step =
+mesh size; the h > hT branch on the coarse grids) the new time level enters un-differenced, (1.5/hT) rho H: a
+first-kind integral operator whose far field (K_{m,l} ~ h/sqrt(m^2 + l^2)) the line matrix does not see. A zebra
+colour updates all its lines at once with the film of the others frozen, so for an error smooth along the lines
+the same-colour lines and the far part of the own line add film changes the line solve did not count: the
+Gauss-Seidel row over-corrects by a factor that grows as the grid is refined, and diverges once omega times it
+exceeds 2. Measured with fine-grid relaxation alone on the transient operator (smooth steady start perturbed by
+1e-4, 12 sweeps, domain [-2.5, 1.5] b): with omega = 0.4 the mean scaled residual grows x136 (M = 20, L = 8,
+129^2), x276 (M = 100, L = 3, 129^2), x1.3e4 (M = 50, L = 8, 257^2), x5.0e3 (M = 100, L = 3, 257^2); the growing
+error is smooth along X, in the contact, on Gauss-Seidel rows with xi = 0.27-3.6. The critical omega falls with
+the mesh size: > 0.4 on 65^2, about 0.3 on 129^2, 0.22-0.25 on 257^2 (0.25: still x5.2 and x1.7 at M = 100, L = 3
+and M = 50, L = 8), i.e. roughly as sqrt(h); omega_T keeps a factor of about 1.4-1.5 below it (0.30, 0.21, 0.15;
+0.11 on 513^2 by the same trend, not measured). It is applied per level by the level's mesh size (the coarse grids,
+stable at 0.4, keep about it) and only to rows with xi <= 10 (3 times the largest xi of a growing row): the
+Poiseuille-dominated inlet rows (xi up to 1e6) are stable at 0.4: under-relaxing them too nearly doubled the
+W-cycles per time step (8.9 instead of 4.8 at M = 100, L = 8, Phi = 0.5, 129^2), and under-relaxing every level by
+the fine time step stalled them (40 cycles without reaching 1e-7 at step 41).
+With omega_T the relaxation alone reduces the residual x0.010-0.44 in 12 sweeps on these cases and M = 100, L = 8,
+and the ehl-indent crossing at 129^2 takes 5.1 cycles per step instead of 3.8. Raising the switch instead
+(distributive rows up to xi = 1.2) cured M = 50 and 100 at L = 8 but not M = 100, L = 3; a switch at 2.4 was
+stable but smoothed only x0.64 in 12 sweeps. The distributive rows are stable (their change is nearly
+film-neutral: the kernel dK decays as a dipole) and keep omega = 0.3. The steady relaxation is unchanged.
 
 Vectorised by zebra ordering: all lines of one parity are solved together as one banded system (lines do not
 couple inside a colour, so the stacked matrix keeps bandwidth (3, 2)), then the film is recomputed and the other
@@ -25,8 +51,19 @@ from scipy.linalg import solve_banded
 from .reynolds import operator, time_weights
 
 XI_LIMIT = 0.3
+OMEGA_GS_TRANSIENT = 0.15     # at h = H_REF, scaled as sqrt(h / H_REF)
+H_REF = 1.0 / 64.0
+XI_FREE = 10.0                # transient Gauss-Seidel rows above this xi keep OMEGA_GS
 OMEGA_GS = 0.4
 OMEGA_JA = 0.3
+
+
+def omega_gs(xi: np.ndarray, h: float, ht: float | None) -> np.ndarray | float:
+    """Under-relaxation of the Gauss-Seidel rows with the largest face coefficient xi on a grid of mesh size h:
+    0.4 steady; with the time term min(0.4, 0.15 sqrt(h/h_ref)) where xi <= 10, 0.4 above."""
+    if ht is None:
+        return OMEGA_GS
+    return np.where(xi > XI_FREE, OMEGA_GS, min(OMEGA_GS, OMEGA_GS_TRANSIENT * np.sqrt(h / H_REF)))
 
 
 def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:
@@ -97,7 +134,7 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
         else:
             ab[2 - m, 0:N + m] = A[-m:N]
     delta = solve_banded((3, 2), ab, res[ij].T.ravel(), check_finite=False).reshape(J.size, ni)
-    upd = np.where(~ja, OMEGA_GS * delta, OMEGA_JA * delta)
+    upd = np.where(~ja, omega_gs(xi, h, ht) * delta, OMEGA_JA * delta)
     P[ij] += upd.T
     dj = np.where(ja, 0.25 * OMEGA_JA * delta, 0.0).T      # distribution to the four neighbours
     if dj.any():
