@@ -223,6 +223,12 @@ def equilibrium(problem: RollerProblem, num: Numerics = Numerics(), x0: np.ndarr
                            f"{DISTINCT_SKEW * 1e3:g} mrad (another branch)")
         return r
     ref = _at_load(problem, num, xn, dn, load_rtol, max_iter, 1, t0)
+    if ref.success and abs(ref.x[3]) > DISTINCT_SKEW:
+        # where configuration 1 does not exist (mu = 0.3 below its fold at 3.2 kN) Newton from the nominal start
+        # already lands on configuration 2 (2 kN: skew 3.9 mrad); skewed starts built on that state leave the grid
+        return replace(ref, configuration=2, time_s=time.perf_counter() - t0,
+                       message="converged (configuration 2, reached from the nominal start: configuration 1 does "
+                               "not exist at this load)")
     base, d0 = (ref.x, ref.approach) if ref.success else (xn, dn)
     tried = []
     for skew, tilt, dy in CONFIG2_STARTS:
