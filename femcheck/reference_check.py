@@ -111,7 +111,9 @@ def check(scene_name: str, model: str, rtol: float = 1e-6, stored: ModelResult |
     dep = problem(sc.kind).DEPENDS[model]
     k = model_key(sc, model)
     sets = "".join(f" --set {key}={v}" for key, v in (params or {}).items())
-    out = CoarseCheck(scene_name, model, k, f"femcheck run {scene_name}{sets} --models {model} --rebuild")
+    # a run under --set goes to the cache only, unless told where to store it
+    where = f" --references {references.reference_dir()}" if params else ""
+    out = CoarseCheck(scene_name, model, k, f"femcheck run {scene_name}{sets} --models {model} --rebuild{where}")
     out.stored = stored if stored is not None else references.load(sc.kind, model, k)
     if out.stored is None:
         return out
