@@ -137,3 +137,19 @@ def test_cycle_limit_raises_with_iterations_and_residual():
     with pytest.raises(ConvergenceError) as err:
         steady.solve(s.prob, s.n, s.levels, tol=1e-14, load_tol=1e-14, max_cycles=3)
     assert err.value.iterations == 3 and err.value.residual > 0
+
+
+def test_shoulder_height_and_collapse_hint():
+    """The rim of seed 004 eq 2.16 at K = 4 (max of -exp(-4 u^2) cos(pi u), found here by a bounded scalar
+    search: 0.0845 D at u = 0.65), and the hint attached to a failed crossing when that rim is taller than the smooth
+    film's minimum (ehl-indent's indent: 0.0211 b^2/Rx; (M, L) = (1200, 19) on 257^2: H_min 0.0109 -> 1.9 times)."""
+    from scipy.optimize import minimize_scalar
+    from femcheck.ehl.model import collapse_hint, shoulder_height
+    best = minimize_scalar(lambda u: np.exp(-4.0 * u * u) * np.cos(np.pi * u), bounds=(0.3, 1.0), method="bounded",
+                           options={"xatol": 1e-10})
+    assert shoulder_height(0.5, 0.25, 4.0) == pytest.approx(-best.fun * 0.25, rel=1e-5)
+    assert shoulder_height(0.5, 0.25, 4.0) == pytest.approx(0.25 * 0.0845, rel=1e-3)
+    keys = {"diameter": 0.5, "slope": 0.5, "decay": 4.0}
+    assert collapse_hint(keys, 0.034) == ""              # (347, 17.2): 0.62, converged
+    hint = collapse_hint(keys, 0.0109)
+    assert "1.9 times" in hint and "mixed lubrication" in hint

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConvergenceError
+from ..geometry.profiles import indent_height
 from . import formulas, groups, outputs, steady, transient
 from .film import Indent
 from .lubricant import Lubricant
@@ -53,6 +54,28 @@ def check_film(sol: steady.Solution, what: str) -> None:
         raise ConvergenceError(what, sol.cycles, sol.residual, 0.0,
                                f"negative film H_min = {sol.H[pos].min():.3g} in the pressurised zone: the grid "
                                "does not resolve this (M, L); use a finer numerics.grid")
+
+
+def shoulder_height(diameter: float, depth: float, decay: float) -> float:
+    """Height of the rim around the hole of seed 004 eq 2.16, max_r R(r) (>= 0; same units as ``depth``): about
+    0.0845 D at K = 4, at r = 0.65 Phi."""
+    r = np.linspace(0.0, 2.0 * diameter, 4001)
+    return max(float(indent_height(r, diameter, depth, decay).max()), 0.0)
+
+
+def collapse_hint(indent_keys: dict[str, float], H_min_smooth: float) -> str:
+    """Why a crossing may have no full film: the indent's shoulders taller than the smooth film's minimum (both
+    in units of b^2/Rx). Measured (benchmarks/results/ehl_robustness.md): ehl-indent's indent (shoulders 0.021)
+    failed wherever the ratio was 1.9-6.5 and converged up to 0.62; the wider Phi = 1 indent, as tall, converged
+    at 6.5 (its shoulders are flattened more). "" when the ratio is below 1."""
+    phi = indent_keys["diameter"]
+    sh = shoulder_height(phi, indent_keys["slope"] * phi, indent_keys["decay"])
+    ratio = sh / H_min_smooth
+    if ratio < 1.0:
+        return ""
+    return (f"the indent's shoulders rise {sh:.3g} b^2/Rx, {ratio:.1f} times the smooth film's minimum "
+            f"{H_min_smooth:.3g}: unless flattened they close the film (mixed lubrication, outside this full-film "
+            "model); a finer numerics.grid tells whether a positive film exists")
 
 
 def film_quantities(s: Setup, sol: steady.Solution) -> dict[str, float]:
@@ -104,9 +127,15 @@ def crossing(s: Setup, indent_keys: dict[str, float], slide_roll: float, tol: fl
         if progress:
             progress(msg)
 
-    hist = transient.march(mg, steps, tol=tol, load_tol=load_tol, keep=lambda k, T: k in kept, progress=on_step,
-                           base=smooth.P)
-    final = hist.snapshots[-1]
-    check_film(final, f"EHL transient ({s.n + 1}^2 nodes) at X_D = 0")
+    try:
+        hist = transient.march(mg, steps, tol=tol, load_tol=load_tol, keep=lambda k, T: k in kept,
+                               progress=on_step, base=smooth.P)
+        final = hist.snapshots[-1]
+        check_film(final, f"EHL transient ({s.n + 1}^2 nodes) at X_D = 0")
+    except ConvergenceError as err:
+        H_min = outputs.film_measures(smooth.x, smooth.y, smooth.P, smooth.H)["H_min"]
+        if hint := collapse_hint(indent_keys, H_min):
+            err.args = (f"{err.args[0]}; {hint}",)
+        raise
     return {"smooth": smooth, "history": hist, "amplitudes": amps, "indent": ind, "final": final, "steps": steps,
             "time_s": time.perf_counter() - t0}
