@@ -6,7 +6,8 @@ Unknowns: the nodal pressures P on (n+1)^2 nodes of a square grid over [x_start,
 Grids are nested: n = n_coarsest 2^l. Full approximation scheme: the coarse problem is
     L^H(P^H) = L^H(I P^h) + I (f^h - L^h(P^h)),   h_H^2 sum P^H = h_H^2 sum I P^h + (g^h - h^2 sum P^h)
 with injection I for P, full weighting of the residual where the 3 x 3 fine patch is pressurised (injection
-elsewhere), bilinear prolongation of the correction added only where the fine P > 0, negatives clipped. H0 is one
+elsewhere), bilinear prolongation of the correction added only where the fine 3 x 3 patch is pressurised (not on the
+cavitation boundary), negatives clipped. H0 is one
 number shared by every level and is relaxed on the coarsest grid only, after every relaxation sweep there:
 H0 <- H0 + c_h (h^2 sum P - g) (more load than wanted opens the gap). FMG: the coarsest problem is solved from
 the Hertz pressure, each solution is interpolated (cubic) to the next grid and improved by V(2,1) cycles.
@@ -71,18 +72,25 @@ def inject(fine: np.ndarray) -> np.ndarray:
     return fine[::2, ::2].copy()
 
 
+def pressurised_patch(P: np.ndarray) -> np.ndarray:
+    """Interior nodes whose 3 x 3 patch (the node and its eight neighbours) has P > 0."""
+    pos = P > 0
+    full = np.zeros_like(pos)
+    n = P.shape[0] - 1
+    full[1:n, 1:n] = True
+    for di in (-1, 0, 1):
+        for dj in (-1, 0, 1):
+            full[1:n, 1:n] &= pos[1 + di:n + di, 1 + dj:n + dj]
+    return full
+
+
 def restrict_residual(r: np.ndarray, P: np.ndarray) -> np.ndarray:
     """Full weighting of the fine residual where the 3 x 3 fine patch is pressurised, injection elsewhere."""
     rc = r[::2, ::2].copy()
     c = (slice(2, -2, 2), slice(2, -2, 2))
     fw = (4.0 * r[c] + 2.0 * (r[1:-3:2, 2:-2:2] + r[3:-1:2, 2:-2:2] + r[2:-2:2, 1:-3:2] + r[2:-2:2, 3:-1:2])
           + r[1:-3:2, 1:-3:2] + r[3:-1:2, 1:-3:2] + r[1:-3:2, 3:-1:2] + r[3:-1:2, 3:-1:2]) / 16.0
-    pos = P > 0
-    full = np.ones(fw.shape, dtype=bool)
-    for di in (-1, 0, 1):
-        for dj in (-1, 0, 1):
-            full &= pos[2 + di:P.shape[0] - 2 + di:2, 2 + dj:P.shape[1] - 2 + dj:2]
-    rc[1:-1, 1:-1] = np.where(full, fw, rc[1:-1, 1:-1])
+    rc[1:-1, 1:-1] = np.where(pressurised_patch(P)[c], fw, rc[1:-1, 1:-1])
     rc[0, :] = rc[-1, :] = rc[:, 0] = rc[:, -1] = 0.0
     return rc
 
@@ -222,7 +230,10 @@ class Multigrid:
         for _ in range(self.gamma):
             self.cycle(l - 1)
         corr = prolong_bilinear(cv.P - start)
-        lv.P += np.where(lv.P > 0, corr, 0.0)
+        # only inside the pressurised zone, not on its rim: at the cavitation boundary (the outlet spike, the
+        # side edges) the coarse grid does not see the free boundary, and its correction there overshot and
+        # diverged on 513^2 at high L (measured, issue 14)
+        lv.P += np.where(pressurised_patch(lv.P), corr, 0.0)
         np.maximum(lv.P, 0.0, out=lv.P)
         self.relax(l, self.post)
 

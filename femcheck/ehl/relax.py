@@ -4,10 +4,11 @@ spec §A.5; Venner & Lubrecht 2000 ch. 17).
 Lines run along X, the direction of the strong coupling. Per node the row type follows the largest face
 coefficient xi = max eps_face/h^2:
 - xi > 0.3 (inlet, outlet: Poiseuille-dominated) or a node whose 5-point star is not pressurised: a
-  Gauss-Seidel row, P <- P + omega delta, omega = 0.4 steady; in a transient omega_T = min(0.4, 0.15 sqrt(h/h_ref))
-  (h the level's mesh size, h_ref = 1/64) where xi <= 10, 0.4 above (see below);
-- otherwise (high-pressure zone, where the film is almost rigid in P): a distributive Jacobi row, P_ij += 0.2 delta
-  and each of the four neighbours -= 0.2 delta/4, which makes the change nearly film-neutral.
+  Gauss-Seidel row, P <- P + omega delta; where xi > 10 omega = 0.4; where xi <= 10 omega = 0.4 min(1, sqrt(h/h_ref))
+  steady and omega_T = min(0.4, 0.15 sqrt(h/h_ref)) in a transient (h the level's mesh size, h_ref = 1/64; below);
+- otherwise (high-pressure zone, where the film is almost rigid in P): a distributive Jacobi row, P_ij += w delta
+  and each of the four neighbours -= w delta/4, which makes the change nearly film-neutral; w = 0.3
+  min(1, sqrt(h/h_ref)) steady, 0.3 in a transient.
 The line matrix is the derivative of Q - W with respect to the line's unknowns, with the elastic film coupling
 of the six nearest line points (i-3 ... i+2) through the cell kernel K_{m,0} (Gauss-Seidel rows) or the
 distributed kernel dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 (Jacobi rows). Rows whose points
@@ -28,7 +29,7 @@ exceeds 2. Measured with fine-grid relaxation alone on the transient operator (s
 error is smooth along X, in the contact, on Gauss-Seidel rows with xi = 0.27-3.6. The critical omega falls with
 the mesh size: > 0.4 on 65^2, about 0.3 on 129^2, 0.22-0.25 on 257^2 (0.25: still x5.2 and x1.7 at M = 100, L = 3
 and M = 50, L = 8), i.e. roughly as sqrt(h); omega_T keeps a factor of about 1.4-1.5 below it (0.30, 0.21, 0.15;
-0.11 on 513^2 by the same trend, not measured). It is applied per level by the level's mesh size (the coarse grids,
+0.11 on 513^2 by the same trend; a 513^2 crossing at M = 1200, L = 3 converged with it). It is applied per level by the level's mesh size (the coarse grids,
 stable at 0.4, keep about it) and only to rows with xi <= 10 (3 times the largest xi of a growing row): the
 Poiseuille-dominated inlet rows (xi up to 1e6) are stable at 0.4: under-relaxing them too nearly doubled the
 W-cycles per time step (8.9 instead of 4.8 at M = 100, L = 8, Phi = 0.5, 129^2), and under-relaxing every level by
@@ -37,7 +38,19 @@ With omega_T the relaxation alone reduces the residual x0.010-0.44 in 12 sweeps 
 and the ehl-indent crossing at 129^2 takes 5.1 cycles per step instead of 3.8. Raising the switch instead
 (distributive rows up to xi = 1.2) cured M = 50 and 100 at L = 8 but not M = 100, L = 3; a switch at 2.4 was
 stable but smoothed only x0.64 in 12 sweeps. The distributive rows are stable (their change is nearly
-film-neutral: the kernel dK decays as a dipole) and keep omega = 0.3. The steady relaxation is unchanged.
+film-neutral: the kernel dK decays as a dipole) and keep omega = 0.3.
+
+The steady relaxation on grids finer than h_ref (measured on 513^2, issue 14). Up to 257^2 it is unchanged
+(0.4 / 0.3). On 513^2 at M = 100, L = 19 the fine-grid relaxation alone diverges from a nearly converged state
+(mean scaled residual 1.4e-4 -> 4.9e-3 in 15 sweeps): distributive rows (xi 0.05-0.1) where the pressure builds
+up at the inlet edge of the Hertz zone, and Gauss-Seidel rows with xi = 0.45-0.7 at the side edges flipping sign
+every sweep (over-correction). The critical distributive omega lies between 0.3 and 0.4 on 257^2 and between 0.25
+and 0.3 on 513^2 (fine-grid sweeps alone), again roughly as sqrt(h). With both factors scaled by
+min(1, sqrt(h/h_ref)) on the rows with xi <= 10 (0.28 and 0.21 on 513^2) the ten (M, L) points of
+benchmarks/results/ehl_robustness.md converge on 513^2 in 6-21 cycles; scaling the Poiseuille-dominated inlet
+rows too stalled the iteration near 1e-7 (M = 347, L = 17.2: 150 cycles), and scaling the distributive rows
+alone (0.2) stalled at 5e-5. The transient keeps omega_T and 0.3 for its distributive rows (its 513^2 crossing at
+M = 1200, L = 3 converged with them).
 
 Vectorised by zebra ordering: all lines of one parity are solved together as one banded system (lines do not
 couple inside a colour, so the stacked matrix keeps bandwidth (3, 2)), then the film is recomputed and the other
@@ -58,12 +71,24 @@ OMEGA_GS = 0.4
 OMEGA_JA = 0.3
 
 
+def fine_grid_factor(h: float) -> float:
+    """min(1, sqrt(h/h_ref)): 1 on every grid up to h_ref = 1/64 (257^2 over 4 b), 1/sqrt(2) on 513^2."""
+    return min(1.0, float(np.sqrt(h / H_REF)))
+
+
 def omega_gs(xi: np.ndarray, h: float, ht: float | None) -> np.ndarray | float:
     """Under-relaxation of the Gauss-Seidel rows with the largest face coefficient xi on a grid of mesh size h:
-    0.4 steady; with the time term min(0.4, 0.15 sqrt(h/h_ref)) where xi <= 10, 0.4 above."""
+    where xi <= 10, steady 0.4 min(1, sqrt(h/h_ref)), with the time term min(0.4, 0.15 sqrt(h/h_ref)); 0.4 above."""
     if ht is None:
-        return OMEGA_GS
-    return np.where(xi > XI_FREE, OMEGA_GS, min(OMEGA_GS, OMEGA_GS_TRANSIENT * np.sqrt(h / H_REF)))
+        inner = OMEGA_GS * fine_grid_factor(h)
+    else:
+        inner = min(OMEGA_GS, OMEGA_GS_TRANSIENT * np.sqrt(h / H_REF))
+    return np.where(xi > XI_FREE, OMEGA_GS, inner)
+
+
+def omega_ja(h: float, ht: float | None) -> float:
+    """Under-relaxation of the distributive rows: steady 0.3 min(1, sqrt(h/h_ref)); with the time term 0.3."""
+    return OMEGA_JA * (fine_grid_factor(h) if ht is None else 1.0)
 
 
 def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:
@@ -134,9 +159,10 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
         else:
             ab[2 - m, 0:N + m] = A[-m:N]
     delta = solve_banded((3, 2), ab, res[ij].T.ravel(), check_finite=False).reshape(J.size, ni)
-    upd = np.where(~ja, omega_gs(xi, h, ht) * delta, OMEGA_JA * delta)
+    wja = omega_ja(h, ht)
+    upd = np.where(~ja, omega_gs(xi, h, ht) * delta, wja * delta)
     P[ij] += upd.T
-    dj = np.where(ja, 0.25 * OMEGA_JA * delta, 0.0).T      # distribution to the four neighbours
+    dj = np.where(ja, 0.25 * wja * delta, 0.0).T      # distribution to the four neighbours
     if dj.any():
         P[0:n - 1, J] -= dj
         P[2:n + 1, J] -= dj
