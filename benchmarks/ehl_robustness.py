@@ -2,7 +2,7 @@
 (M, L) corners, each either converged or a ConvergenceError with its iterations and residual.
 
     flock /work/heavy.lock python benchmarks/ehl_robustness.py [--grid 257] [--scene-grid 129]
-        [--fine-cases 0,6,7 --coarse-grid 129] [--out benchmarks/results]
+        [--fine-cases 0,6,7 --coarse-grid 129] [--steady-only] [--name ehl_robustness] [--out benchmarks/results]
 
 Contact: ehl-indent's steel ball (Rx = Ry = 10 mm, E = 210 GPa, nu = 0.3), Roelands + Dowson-Higginson
 (eta0 = 0.04 Pa s, alpha = 2.2e-8 1/Pa), pure rolling, domain [-2.5, 1.5] x [-2, 2] b, tolerances 1e-7 (mean
@@ -98,9 +98,9 @@ def cell(r: dict, transient: bool) -> str:
             f"({r['shoulder_amplitude_pH']:.4f} p_H)")
 
 
-def write(out: Path, res: dict) -> None:
+def write(out: Path, res: dict, name: str = "ehl_robustness") -> None:
     out.mkdir(parents=True, exist_ok=True)
-    (out / "ehl_robustness.json").write_text(json.dumps(res, indent=1))
+    (out / f"{name}.json").write_text(json.dumps(res, indent=1))
     a = res["args"]
     lines = ["# EHL robustness over the thesis range (issue 14)", "",
              f"`benchmarks/ehl_robustness.py`; steady on {a['grid']}^2, Phi = 1 (D/Phi = 1/4, K = 4) transient on the "
@@ -113,12 +113,12 @@ def write(out: Path, res: dict) -> None:
         for k, tr in (("steady", False), ("phi1", True), ("scene", True)):
             row.append(cell(c[k], tr) if k in c else "not run")
         lines.append("| " + " | ".join(row) + " |")
-    (out / "ehl_robustness.md").write_text("\n".join(lines) + "\n")
+    (out / f"{name}.md").write_text("\n".join(lines) + "\n")
 
 
-def rewrite_table(out: Path) -> None:
+def rewrite_table(out: Path, name: str = "ehl_robustness") -> None:
     """Rewrite the .md from the stored .json (after a change of the table format)."""
-    write(out, json.loads((out / "ehl_robustness.json").read_text()))
+    write(out, json.loads((out / f"{name}.json").read_text()), name)
 
 
 def main() -> None:
@@ -128,6 +128,8 @@ def main() -> None:
     ap.add_argument("--fine-cases", default="", help="case indices whose Phi = 1 transient runs on --grid")
     ap.add_argument("--coarse-grid", type=int, default=129)
     ap.add_argument("--only", default="", help="comma-separated case indices (0-based) to run")
+    ap.add_argument("--steady-only", action="store_true", help="only the smooth steady solution of each case")
+    ap.add_argument("--name", default="ehl_robustness", help="stem of the .json / .md written under --out")
     ap.add_argument("--out", default=str(Path(__file__).parent / "results"))
     args = ap.parse_args()
     out = Path(args.out)
@@ -141,13 +143,15 @@ def main() -> None:
         res["cases"].append(case)
         case["steady"] = run_steady(M, L, args.grid)
         print(f"M {M:g} L {L:g} steady: {cell(case['steady'], False)}", flush=True)
-        write(out, res)
+        write(out, res, args.name)
+        if args.steady_only:
+            continue
         case["phi1"] = run_transient(M, L, args.grid if i in fine else args.coarse_grid, INDENTS["phi1"])
         print(f"M {M:g} L {L:g} phi1: {cell(case['phi1'], True)}", flush=True)
-        write(out, res)
+        write(out, res, args.name)
         case["scene"] = run_transient(M, L, args.scene_grid, INDENTS["scene"])
         print(f"M {M:g} L {L:g} scene: {cell(case['scene'], True)}", flush=True)
-        write(out, res)
+        write(out, res, args.name)
 
 
 if __name__ == "__main__":
