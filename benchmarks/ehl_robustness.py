@@ -102,11 +102,12 @@ def write(out: Path, res: dict, name: str = "ehl_robustness") -> None:
     out.mkdir(parents=True, exist_ok=True)
     (out / f"{name}.json").write_text(json.dumps(res, indent=1))
     a = res["args"]
+    what = (f"steady on {a['grid']}^2, Phi = 1 (D/Phi = 1/4, K = 4) transient on the grid given in the cell, "
+            f"ehl-indent's indent (Phi = 0.5, D/Phi = 0.5, K = 4) on {a['scene_grid']}^2"
+            if any("phi1" in c for c in res["cases"]) else f"steady on {a['grid']}^2 only (`--steady-only`)")
     lines = ["# EHL robustness over the thesis range (issue 14)", "",
-             f"`benchmarks/ehl_robustness.py`; steady on {a['grid']}^2, Phi = 1 (D/Phi = 1/4, K = 4) transient on the "
-             f"grid given in the cell, ehl-indent's indent (Phi = 0.5, D/Phi = 0.5, K = 4) on {a['scene_grid']}^2; "
-             "tolerances 1e-7; "
-             "timings indicative (shared 2-core machine).", "",
+             f"`benchmarks/ehl_robustness.py`; {what}; tolerances 1e-7; timings indicative (shared 2-core machine).",
+             "",
              "| M | L | steady | transient Phi = 1 | transient scene indent |", "|---|---|---|---|---|"]
     for c in res["cases"]:
         row = [f"{c['M']:g}", f"{c['L']:g}"]
