@@ -76,7 +76,7 @@ def run_transient(M: float, L: float, grid: int, indent: dict) -> dict:
     q = model.film_quantities(s, sm)
     amp = c["amplitudes"]["amplitude"][-1]
     return {"status": "converged", "grid": grid, "time_s": time.perf_counter() - t0, "steps": c["steps"],
-            "cycles_per_step": float(np.mean(hist.cycles)), "max_cycles": int(max(hist.cycles)),
+            "levels": s.levels, "cycles_per_step": float(np.mean(hist.cycles)), "max_cycles": int(max(hist.cycles)),
             "residual_max": float(max(hist.residual)), "load_error_max": float(max(hist.load_error)),
             "h_central": q["h_central"], "h_min": q["h_min"], "p_max": q["p_max"],
             "shoulder_amplitude": amp * s.g.p_hertz, "shoulder_amplitude_pH": amp, "p_hertz": s.g.p_hertz}

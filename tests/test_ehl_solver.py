@@ -170,4 +170,43 @@ def test_shoulder_height_and_collapse_hint():
     keys = {"diameter": 0.5, "slope": 0.5, "decay": 4.0}
     assert collapse_hint(keys, 0.034) == ""              # (347, 17.2): 0.62, converged
     hint = collapse_hint(keys, 0.0109)
-    assert "1.9 times" in hint and "mixed lubrication" in hint
+    assert "1.9 times" in hint and "finer numerics.grid" in hint and "mixed lubrication" in hint
+
+
+def test_coarse_grids_see_the_full_weighted_indent():
+    """Each coarser grid's rigid gap is the paraboloid plus the full weighting of the next finer grid's indent part
+    (multigrid.Multigrid.set_time), not the indent sampled at its own nodes: a narrow indent (Phi = 0.5 b, two
+    cells of the 16-interval coarsest grid) sampled there made the crossing at M = 1200, L = 19 stall on 257^2."""
+    from femcheck.ehl.multigrid import Multigrid
+    s = setup(400.0, 5.0, 65, x=(-2.5, 1.5))
+    ind = Indent(0.5, 0.25, 4.0, x0=-0.61, speed_ratio=1.0)
+    mg = Multigrid(dataclasses.replace(s.prob, indent=ind), s.n, s.levels)
+    mg.set_time(0.37)
+    fine, mid, coarse = mg.levels[-1], mg.levels[-2], mg.levels[0]
+    # independent full weighting of the fine indent part at the interior coarse nodes (explicit 3 x 3 stencil)
+    dent = fine.rigid - fine.film.base
+    w = np.outer([1.0, 2.0, 1.0], [1.0, 2.0, 1.0]) / 16.0
+    expect = np.array([[np.sum(w * dent[2 * i - 1:2 * i + 2, 2 * j - 1:2 * j + 2]) for j in range(1, mid.n)]
+                       for i in range(1, mid.n)])
+    assert np.allclose(mid.rigid[1:-1, 1:-1] - mid.film.base[1:-1, 1:-1], expect, atol=1e-14)
+    # the fine grid samples the indent exactly; the paraboloid stays exact on every grid
+    assert np.allclose(dent, -ind.height(fine.film.X, fine.film.Y, 0.37), atol=1e-15)
+    sampled = -ind.height(coarse.film.X, coarse.film.Y, 0.37)
+    weighted = coarse.rigid - coarse.film.base
+    # weighting smooths the hole: shallower than the sampled one on the coarsest grid, same sign
+    assert weighted.max() < 0.9 * sampled.max() and weighted.max() > 0.1 * sampled.max()
+
+
+def test_density_slope_is_the_derivative_of_the_density():
+    """Lubricant.density_slope (used by the transient line matrix) against a central difference of
+    Lubricant.density: Dowson-Higginson, and 0 when incompressible."""
+    from femcheck.ehl.lubricant import Lubricant
+    P = np.array([1e-3, 0.05, 0.3, 1.0, 2.5])
+    dh = Lubricant("roelands", "dowson_higginson", 0.04, 2.2e-8, 1.5e9)
+    d = 1e-6
+    fd = (dh.density(P + d) - dh.density(P - d)) / (2 * d)
+    assert np.allclose(dh.density_slope(P), fd, rtol=1e-7)
+    # at p = 0: 0.34 p_H / 0.59e9 (closed form of d/dp of (0.59e9 + 1.34 p)/(0.59e9 + p))
+    assert dh.density_slope(np.array([0.0]))[0] == pytest.approx(0.34 * 1.5e9 / 0.59e9, rel=1e-12)
+    inc = Lubricant("roelands", "incompressible", 0.04, 2.2e-8, 1.5e9)
+    assert not inc.density_slope(P).any()

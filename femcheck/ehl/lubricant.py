@@ -51,3 +51,10 @@ class Lubricant:
             return np.ones_like(P, dtype=float)
         p = np.maximum(P, 0.0) * self.p_hertz
         return (0.59e9 + 1.34 * p) / (0.59e9 + p)
+
+    def density_slope(self, P: np.ndarray) -> np.ndarray:
+        """d(rho/rho0)/dP at P = p/p_H: Dowson-Higginson 0.34 a p_H/(a + p)^2, a = 0.59e9 Pa; 0 incompressible."""
+        if self.density_law == "incompressible":
+            return np.zeros_like(P, dtype=float)
+        p = np.maximum(P, 0.0) * self.p_hertz
+        return 0.34 * 0.59e9 * self.p_hertz / (0.59e9 + p) ** 2

@@ -67,19 +67,20 @@ def shoulder_height(diameter: float, depth: float, decay: float) -> float:
 
 
 def collapse_hint(indent_keys: dict[str, float], H_min_smooth: float) -> str:
-    """Why a crossing may have no full film: the indent's shoulders taller than the smooth film's minimum (both
-    in units of b^2/Rx). Measured (benchmarks/results/ehl_robustness.md): ehl-indent's indent (shoulders 0.021)
-    failed on 257^2 wherever the ratio was 1.9-6.5 and converged up to 0.62; the wider Phi = 1 indent, as tall,
-    converged at 6.5 (its shoulders are flattened more), and on 513^2 the narrow one converged at 6.5 too (M = 1200,
-    L = 3, positive film): resolution, not collapse, there. "" when the ratio is below 1."""
+    """What a failed crossing should try when the indent's shoulders are taller than the smooth film's minimum
+    (both in units of b^2/Rx). Measured (benchmarks/results/ehl_robustness.md): ehl-indent's indent (shoulders
+    0.021) at ratios 5.8-6.5 was refused for a negative film on 129^2 and 257^2 and converged with a positive film
+    on 513^2 ((1200, 3), (1000, 2)); at ratio 1.9 ((1200, 19)) it converges on 257^2 with the film minimum 0.0062
+    over the shoulder. No measured case closed the film; a film that does close (mixed lubrication) is outside this
+    full-film model. "" when the ratio is below 1."""
     phi = indent_keys["diameter"]
     sh = shoulder_height(phi, indent_keys["slope"] * phi, indent_keys["decay"])
     ratio = sh / H_min_smooth
     if ratio < 1.0:
         return ""
     return (f"the indent's shoulders rise {sh:.3g} b^2/Rx, {ratio:.1f} times the smooth film's minimum "
-            f"{H_min_smooth:.3g}: unless flattened they close the film (mixed lubrication, outside this full-film "
-            "model); a finer numerics.grid tells whether a positive film exists")
+            f"{H_min_smooth:.3g}: resolving them needs a finer numerics.grid (513^2 at 6.5 times); if that fails "
+            "too the film may close over them (mixed lubrication, outside this full-film model)")
 
 
 def film_quantities(s: Setup, sol: steady.Solution) -> dict[str, float]:

@@ -11,34 +11,37 @@ coefficient xi = max eps_face/h^2:
   min(1, sqrt(h/h_ref)) steady, 0.3 in a transient.
 The line matrix is the derivative of Q - W with respect to the line's unknowns, with the elastic film coupling
 of the six nearest line points (i-3 ... i+2) through the cell kernel K_{m,0} (Gauss-Seidel rows) or the
-distributed kernel dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 (Jacobi rows). Rows whose points
-i-2 ... i+2 are not all pressurised keep the diagonal only (cavitation boundary). Cavitation: P >= 0 after every
-update (Reynolds / Swift-Stieber condition by complementarity).
+distributed kernel dK_m = K_{m,0} - (K_{m+1,0} + K_{|m-1|,0} + 2 K_{m,1})/4 (Jacobi rows), and the
+compressibility: r = rho H changes with P through rho too, by H drho/dP at the points i, i-1, i-2 of the wedge
+and time terms (a distributive node k moving P_{k+-1} by -delta_k/4 along the line; transient only, below).
+Rows whose points i-2 ... i+2 are not all
+pressurised keep the diagonal only (cavitation boundary). Cavitation: P >= 0 after every update (Reynolds /
+Swift-Stieber condition by complementarity).
 
-Why the transient Gauss-Seidel rows are under-relaxed more (measured, issue 14). In the steady equation the
-elastic film enters only through the wedge d(rho H)/dX: the kernel is differenced along the line, its smooth far
-field cancels, and the six line points of the line matrix carry the coupling. With the NU2 time term (time step =
-mesh size; the h > hT branch on the coarse grids) the new time level enters un-differenced, (1.5/hT) rho H: a
-first-kind integral operator whose far field (K_{m,l} ~ h/sqrt(m^2 + l^2)) the line matrix does not see. A zebra
-colour updates all its lines at once with the film of the others frozen, so for an error smooth along the lines
-the same-colour lines and the far part of the own line add film changes the line solve did not count: the
-Gauss-Seidel row over-corrects by a factor that grows as the grid is refined, and diverges once omega times it
-exceeds 2. Measured with fine-grid relaxation alone on the transient operator (smooth steady start perturbed by
-1e-4, 12 sweeps, domain [-2.5, 1.5] b): with omega = 0.4 the mean scaled residual grows x136 (M = 20, L = 8,
-129^2), x276 (M = 100, L = 3, 129^2), x1.3e4 (M = 50, L = 8, 257^2), x5.0e3 (M = 100, L = 3, 257^2); the growing
-error is smooth along X, in the contact, on Gauss-Seidel rows with xi = 0.27-3.6. The critical omega falls with
-the mesh size: > 0.4 on 65^2, about 0.3 on 129^2, 0.22-0.25 on 257^2 (0.25: still x5.2 and x1.7 at M = 100, L = 3
-and M = 50, L = 8), i.e. roughly as sqrt(h); omega_T keeps a factor of about 1.4-1.5 below it (0.30, 0.21, 0.15;
-0.11 on 513^2 by the same trend; a 513^2 crossing at M = 1200, L = 3 converged with it). It is applied per level by the level's mesh size (the coarse grids,
-stable at 0.4, keep about it) and only to rows with xi <= 10 (3 times the largest xi of a growing row): the
-Poiseuille-dominated inlet rows (xi up to 1e6) are stable at 0.4: under-relaxing them too nearly doubled the
-W-cycles per time step (8.9 instead of 4.8 at M = 100, L = 8, Phi = 0.5, 129^2), and under-relaxing every level by
-the fine time step stalled them (40 cycles without reaching 1e-7 at step 41).
-With omega_T the relaxation alone reduces the residual x0.010-0.44 in 12 sweeps on these cases and M = 100, L = 8,
-and the ehl-indent crossing at 129^2 takes 5.1 cycles per step instead of 3.8. Raising the switch instead
-(distributive rows up to xi = 1.2) cured M = 50 and 100 at L = 8 but not M = 100, L = 3; a switch at 2.4 was
-stable but smoothed only x0.64 in 12 sweeps. The distributive rows are stable (their change is nearly
-film-neutral: the kernel dK decays as a dipole) and keep omega = 0.3.
+Why the transient Gauss-Seidel rows are under-relaxed more (measured, issue 14). In the steady equation the elastic
+film enters only through the wedge d(rho H)/dX: the kernel is differenced along the line, its smooth far field
+cancels, and the six line points of the line matrix carry the coupling. With the NU2 time term (time step = mesh
+size; the h > hT branch on the coarse grids) the new time level enters un-differenced, (1.5/hT) rho H: a first-kind
+integral operator whose far field (K_{m,l} ~ h/sqrt(m^2 + l^2)) the line matrix does not see. A zebra colour
+updates all its lines at once with the film of the others frozen, so for an error smooth along the lines the
+same-colour lines and the far part of the own line add film changes the line solve did not count: the Gauss-Seidel
+row over-corrects by a factor that grows as the grid is refined, and diverges once omega times it exceeds 2.
+Measured with fine-grid relaxation alone on the transient operator (smooth steady start perturbed by 1e-4, 12
+sweeps, domain [-2.5, 1.5] b): with omega = 0.4 the mean scaled residual grows x136 (M = 20, L = 8, 129^2), x276 (M
+= 100, L = 3, 129^2), x1.3e4 (M = 50, L = 8, 257^2), x5.0e3 (M = 100, L = 3, 257^2); the growing error is smooth
+along X, in the contact, on Gauss-Seidel rows with xi = 0.27-3.6. The critical omega falls with the mesh size: >
+0.4 on 65^2, about 0.3 on 129^2, 0.22-0.25 on 257^2 (0.25: still x5.2 and x1.7 at M = 100, L = 3 and M = 50, L =
+8), i.e. roughly as sqrt(h); omega_T keeps a factor of about 1.4-1.5 below it (0.30, 0.21, 0.15; 0.11 on 513^2 by
+the same trend; 513^2 crossings at M = 1200, L = 3 and M = 1000, L = 2 converged with it). It is applied per level
+by the level's mesh size (the coarse grids, stable at 0.4, keep about it) and only to rows with xi <= 10 (3 times
+the largest xi of a growing row): the Poiseuille-dominated inlet rows (xi up to 1e6) are stable at 0.4:
+under-relaxing them too nearly doubled the W-cycles per time step (8.9 instead of 4.8 at M = 100, L = 8, Phi = 0.5,
+129^2), and under-relaxing every level by the fine time step stalled them (40 cycles without reaching 1e-7 at step
+41). With omega_T the relaxation alone reduces the residual x0.010-0.44 in 12 sweeps on these cases and M = 100, L
+= 8, and the ehl-indent crossing at 129^2 takes 5.1 cycles per step instead of 3.8. Raising the switch instead
+(distributive rows up to xi = 1.2) cured M = 50 and 100 at L = 8 but not M = 100, L = 3; a switch at 2.4 was stable
+but smoothed only x0.64 in 12 sweeps. The distributive rows are stable (their change is nearly film-neutral: the
+kernel dK decays as a dipole) and keep omega = 0.3.
 
 The steady relaxation on grids finer than h_ref (measured on 513^2, issue 14). Up to 257^2 it is unchanged
 (0.4 / 0.3). On 513^2 at M = 100, L = 19 the fine-grid relaxation alone diverges from a nearly converged state
@@ -51,6 +54,16 @@ benchmarks/results/ehl_robustness.md converge on 513^2 in 6-21 cycles; scaling t
 rows too stalled the iteration near 1e-7 (M = 347, L = 17.2: 150 cycles), and scaling the distributive rows
 alone (0.2) stalled at 5e-5. The transient keeps omega_T and 0.3 for its distributive rows (its 513^2 crossing at
 M = 1200, L = 3 converged with them).
+
+Why the compressibility term (measured, issue 14). Venner's line matrix keeps only the elastic change of the film
+(rho dH/dP). In an indent's hole the film is some 20 times the contact's (H = 0.19 against 0.01 at M = 1200,
+L = 19), and there H drho/dP (Dowson-Higginson drho/dP = 0.37 at P = 0.23: 0.075) is 7 times the elastic
+self-coupling c_el K_00 (0.0112 on 257^2): the distributive rows in the hole over-corrected, and the crossing
+of ehl-indent's indent stalled at X_D = -0.69 b (257^2, 4 grids: step 149 of 192, residual 5.5e-7 with 98 % of it
+on the 100 nodes in the hole). With the term it converges (12-13 cycles on those steps); with it and the weighted
+coarse-grid indent (multigrid.Multigrid.set_time) the whole crossing converges on 257^2 at D/Phi = 0.35 and 0.5.
+The steady relaxation keeps Venner's matrix: with the term the smooth steady solution at M = 100, L = 19 on 513^2
+stalled (residual 1.3e-7 after 60 cycles; without it 30 at most), and no steady case needed it.
 
 Vectorised by zebra ordering: all lines of one parity are solved together as one banded system (lines do not
 couple inside a colour, so the stacked matrix keeps bandwidth (3, 2)), then the film is recomputed and the other
@@ -98,7 +111,7 @@ def distributed_kernel(K0: np.ndarray, K1: np.ndarray) -> np.ndarray:
 
 
 def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None, r1, r2, c_el: float,
-                 K0: np.ndarray, K1: np.ndarray, colour: int) -> None:
+                 K0: np.ndarray, K1: np.ndarray, colour: int, density_slope=None) -> None:
     """One line relaxation of the lines j = colour, colour + 2, ... (interior), P updated in place.
 
     ``state(P)`` returns (H, rho, eps, r) on the full grid for the current P."""
@@ -145,13 +158,30 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
         out = local * ri * Kr[abs(m)] + wX * (a1 * rim1 * Kr[abs(m + 1)] + a2 * rim2 * Kr[abs(m + 2)])
         return c_el * out
 
+    # compressibility: r = rho H also changes through rho(P); in a deep film (an indent's hole, H ~ 0.2 against
+    # ~0.01 in the contact) H drho/dP outweighs the elastic self-coupling c_el K0 (measured, issue 14)
+    comp = {m: 0.0 for m in range(-3, 3)}
+    if density_slope is not None and ht is not None:
+        gt = (np.maximum(H, 0.0) * density_slope(P))[:, J].T      # H drho/dP along each line (H < 0 early on)
+        g0, g1 = gt[:, 1:n], gt[:, 0:n - 1]
+        g2 = np.concatenate([np.zeros((J.size, 1)), gt[:, 0:n - 2]], axis=1)
+        c0, c1, c2 = local, wX * a1, wX * a2
+        jf = ja.astype(float)
+        jm = lambda s: np.concatenate([np.zeros((J.size, s)), jf[:, :ni - s]], axis=1) if s > 0 else (  # noqa: E731
+            np.concatenate([jf[:, -s:], np.zeros((J.size, -s))], axis=1) if s < 0 else jf)
+        # column k = i + m; a distributive node k moves P_{k+-1} by -delta_k/4 (along the line)
+        comp[0] = c0 * g0 - 0.25 * jf * c1 * g1
+        comp[-1] = c1 * g1 - 0.25 * jm(1) * (c0 * g0 + c2 * g2)
+        comp[-2] = c2 * g2 - 0.25 * jm(2) * c1 * g1
+        comp[-3] = -0.25 * jm(3) * c2 * g2
+        comp[1] = -0.25 * jm(-1) * c0 * g0
     pois = {-2: np.where(ja, -0.25 * eW, 0.0), -1: np.where(ja, eW + 0.25 * S, eW), 0: np.where(ja, -1.25 * S, -S),
             1: np.where(ja, eE + 0.25 * S, eE), 2: np.where(ja, -0.25 * eE, 0.0), -3: 0.0}
     N = J.size * ni
     ab = np.zeros((6, N))
     ii = np.arange(ni)
     for m in range(-3, 3):
-        A = pois[m] - dH(m)
+        A = pois[m] - dH(m) - comp[m]
         inside = (ii + m >= 0) & (ii + m < ni)
         A = np.where(inside & (band | (m == 0)), A, 0.0).ravel()
         if m >= 0:
