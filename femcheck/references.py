@@ -33,6 +33,12 @@ def _paths(kind: str, model: str, key: str, root: Path | None = None) -> tuple[P
     return base.with_suffix(".json"), base.with_suffix(".npz")
 
 
+def inputs_dir(kind: str, model: str, key: str, root: Path | None = None) -> Path:
+    """The folder of the recorded coarse-level inputs (meshes, derived values; :mod:`femcheck.replay`) of the
+    reference ``key``: ``<kind>/<model>-<key16>.inputs`` beside its JSON."""
+    return _paths(kind, model, key, root)[0].with_suffix(".inputs")
+
+
 def load(kind: str, model: str, key: str, root: Path | None = None) -> ModelResult | None:
     """The stored reference for ``key`` under ``root`` (default :func:`reference_dir`), or None."""
     meta_path, field_path = _paths(kind, model, key, root)

@@ -5,7 +5,7 @@ import time
 from pathlib import Path
 from typing import Any, Callable
 
-from . import cache, references
+from . import cache, references, replay
 from .checks import physical_violations
 from .compare import compare
 from .errors import ConvergenceError, InputError
@@ -36,7 +36,21 @@ def resolve_scene(scene: Scene | str | Path, overrides: dict[str, Any] | None = 
 
 def _store_reference(scene: Scene, name: str, key: str, res: ModelResult, dep: dict, root: Path | None) -> None:
     relevant = {p: v for p, v in scene.params.items() if p.startswith(dep["params"])}
-    references.store(scene.kind, name, key, res, scene.name, relevant, root)
+    if references.store(scene.kind, name, key, res, scene.name, relevant, root) is not None and "coarse" in dep:
+        record_coarse_inputs(scene, name, key, dep, root)
+
+
+def record_coarse_inputs(scene: Scene, name: str, key: str, dep: dict, root: Path | None) -> None:
+    """Solve the coarsest level of reference ``name`` (the kind's ``DEPENDS[name]["coarse"]`` overrides) once
+    more while recording its meshes and derived inputs, and store them beside the reference
+    (:func:`femcheck.references.inputs_dir`): the re-solve that proves the stored numbers current then runs on
+    them (:mod:`femcheck.replay`, :mod:`femcheck.reference_check`). Meshes come from the mesh cache, so they are
+    the very meshes the reference was just solved on."""
+    coarse = scene.with_overrides(dep["coarse"])
+    with replay.recording() as rec:
+        res = problem(scene.kind).MODELS[name](coarse, None)
+    if res.status == "ok":
+        replay.save(rec, references.inputs_dir(scene.kind, name, key, root))
 
 
 def _stored(scene: Scene, name: str, key: str, root: Path | None) -> ModelResult | None:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
+from .cache import cached_builder
 from .plane import MeshSpec, TriMesh, _contact_polyline, _Gmsh, _size_field, _extract
 
 
@@ -45,6 +46,7 @@ class ZoneSpec:
         return np.linspace(-self.t_c, self.t_c, self.elements + 1)
 
 
+@cached_builder("bearing-roller")
 def roller(radius: float, zone: ZoneSpec, spec: MeshSpec) -> TriMesh:
     """Disc of ``radius`` (m) centred at the origin, local frame x = e_r (outward from the bearing axis):
     the inner pole zone (towards the bearing axis) at x = -sqrt(R^2 - t^2), the outer pole zone at
@@ -81,6 +83,7 @@ class RingSpec:
     support_ends: tuple[float, ...] = ()
 
 
+@cached_builder("bearing-sector")
 def _sector(ring: RingSpec, zone: ZoneSpec, spec: MeshSpec) -> TriMesh:
     """The sector |theta| <= pi/Z centred on zone 0 (at theta = 0)."""
     half = np.pi / ring.rollers

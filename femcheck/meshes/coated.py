@@ -22,6 +22,7 @@ import numpy as np
 
 from .plane import TriMesh, _Gmsh
 from .block import TetMesh, background_size, drop_unused_nodes, node_table
+from .cache import cached_builder
 
 LAYER, SUBSTRATE = 0, 1
 
@@ -140,6 +141,7 @@ def _substrate(x_top: np.ndarray, y_top: float, width: float, depth: float, h_co
     return TriMesh(pts, inverse.reshape(tri.shape).T.copy())
 
 
+@cached_builder("coated-half")
 def coated_block_half(width: float, depth: float, thickness: float, sizing: LayerSizing, level: int,
                       rigid_substrate: bool = False) -> LayeredTriMesh:
     """Symmetric half [0, width/2] x [-depth, 0] of a block coated with a layer [-thickness, 0], mesh level
@@ -204,6 +206,7 @@ class LayeredTetMesh:
     layer_rows: int
 
 
+@cached_builder("coated-quarter")
 def coated_block_quarter(length: float, depth: float, thickness: float, sizing: LayerSizing, level: int,
                          rigid_substrate: bool = False) -> LayeredTetMesh:
     """Quarter of a coated block (symmetry planes x = 0 and y = 0, contact centred at the origin), mesh level

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 import gmsh
 import numpy as np
 
+from .cache import cached_builder
+
 
 @dataclass
 class TriMesh:
@@ -106,6 +108,7 @@ def contact_abscissae(spec: MeshSpec) -> np.ndarray:
     return np.linspace(0.0, spec.x_contact, n + 1)
 
 
+@cached_builder("block-half")
 def block_half(width: float, depth: float, spec: MeshSpec) -> TriMesh:
     """Half block [0, width/2] x [-depth, 0] (m); top surface y = 0 with contact nodes at x_i."""
     xs = contact_abscissae(spec)
@@ -120,6 +123,7 @@ def block_half(width: float, depth: float, spec: MeshSpec) -> TriMesh:
         return _mesh_surface(model, lines, rest, spec)
 
 
+@cached_builder("cylinder-half")
 def cylinder_half(radius: float, spec: MeshSpec) -> TriMesh:
     """Lower-left quarter of a cylinder of ``radius`` (m) touching y = 0 at the origin, centre (0, R).
 

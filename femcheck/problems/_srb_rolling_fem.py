@@ -29,24 +29,37 @@ from ..fem.rolling_geometry import Crowned, Grooved, gap, kinematics
 from ..geometry import srb_bearing as sb
 
 
-def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh: MeshSettings,
+def cect_pose(r: EquilibriumResult) -> dict[str, Any]:
+    """What the FE takes from a CECT equilibrium, as plain numbers (SI, bearing frame B): the state ``x``
+    (d_Y, d_Z, beta, gamma, omega_m, omega_R), the roller centre ``centre``, the inner ring's displacement
+    ``delta`` along e_z, the pressure centres ``s_centre`` per contact (m along the profile) and the inertia
+    force (N) and moment (N m). A stored FE reference records it (:func:`femcheck.replay.derived`): it is an
+    input of the FE, determined by the CECT solve only to that solve's tolerance."""
+    s = r.state
+    return {"x": [float(v) for v in r.x], "centre": s.centre.tolist(), "delta": float(s.delta),
+            "s_centre": {c: float(s.contacts[c].result.pressure_centre) for c in sb.CONTACTS},
+            "inertia_force": s.inertia_force.tolist(), "inertia_moment": s.inertia_moment.tolist()}
+
+
+def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: MeshSettings,
                  progress=None, half_x: float = 1.35) -> dict[str, Any]:
-    """FE rolling at the CECT pose (module docstring) on nx x ns cells per contact over x in +-half_x a_H (the
-    larger contact's). Returns {"quantities", "stats", "solution"}; stats["dx"] is the cell length (m)."""
+    """FE rolling at the CECT pose ``cp`` (:func:`cect_pose`; module docstring) on nx x ns cells per contact over
+    x in +-half_x a_H (the larger contact's). Returns {"quantities", "stats", "solution"}; stats["dx"] is the
+    cell length (m)."""
     b = sb.BearingGeometry.from_params(p)
     mu, N = float(p["friction.mu"]), float(p["load.normal"])
-    s = r.state
     Q = np.stack([b.e_x, b.e_y, b.e_z])
-    pose = sb.Pose(*(float(v) for v in r.x[:4]))
-    C = Q @ (s.centre - b.nominal_centre)
+    x = np.asarray(cp["x"], dtype=float)
+    pose = sb.Pose(*(float(v) for v in x[:4]))
+    C = Q @ (np.asarray(cp["centre"], dtype=float) - b.nominal_centre)
     v = Q @ sb.roller_frame(b, pose)[1]
-    shift = Q @ (s.delta * b.e_z)
+    shift = Q @ (float(cp["delta"]) * b.e_z)
     geo = fe.geometry(p)
     roller = Crowned(C, v, geo["r"], geo["R"])
     rings = {"inner": Grooved(geo["inner"]["G"] + shift, geo["inner"]["rg"], geo["O"] + shift, geo["Y"]),
              "outer": Grooved(geo["outer"]["G"], geo["outer"]["rg"], geo["O"], geo["Y"])}
-    om, orr = float(r.x[4]), float(r.x[5])
-    centres = {c: s.contacts[c].result.pressure_centre for c in sb.CONTACTS}
+    om, orr = float(x[4]), float(x[5])
+    centres = {c: float(cp["s_centre"][c]) for c in sb.CONTACTS}
     hz = fe.hertz_estimates(p, N)
     # windows on the CECT pressure centres that stay on the roller (the FE meshes the roller's length only)
     b_max = max(h.semi_axis_y for h in hz.values())
@@ -111,8 +124,8 @@ def at_cect_pose(p: dict[str, Any], r: EquilibriumResult, nx: int, ns: int, mesh
         q[f"adhesion_fraction_{c}"] = float(res.adhesion_fraction)
         F, M = F + res.force, M + res.moment
     q["f_lat_sum"] = q["f_lat_inner"] + q["f_lat_outer"]
-    F = F + Q @ s.inertia_force
-    M = M + Q @ s.inertia_moment
+    F = F + Q @ np.asarray(cp["inertia_force"], dtype=float)
+    M = M + Q @ np.asarray(cp["inertia_moment"], dtype=float)
     g0 = grids["inner"]
     stats = {"iterations": sol.iterations, "residual": sol.residual, "grid": [nx, ns], "dx": g0.dx, "ds": g0.ds,
              "speed_iterations": speed_iterations, "speed_residual": float(np.abs(res0).max()),

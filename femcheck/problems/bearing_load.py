@@ -143,7 +143,7 @@ REQUIRED = ("geometry.inner_raceway_diameter", "geometry.outer_raceway_diameter"
 
 DEPENDS = {
     "fem": {"params": ("geometry.", "bearing.rollers", "load.radial", "load.angle", "materials.", "support.",
-                       "numerics.fem_"), "reference": True},
+                       "numerics.fem_"), "reference": True, "coarse": {"numerics.fem_levels": 1}},
     "condensed": {"params": ("geometry.", "bearing.rollers", "load.radial", "load.angle", "materials.", "support.",
                              "numerics.condensed_")},
 }
