@@ -1,47 +1,75 @@
-"""The README's examples work as written (issue 16 item 4): the soft-roller scene file, the pytest example run
-by pytest itself from another directory, and the Python lines."""
+"""The README: short, opening with the two commands CI runs, its picture present, its links alive, and its
+examples working as written (the CLI lines, the Python lines, and the pytest example run by pytest itself in a
+fresh project). The rules for running blocks are shared with the documentation pages (``tests/docs_blocks.py``).
+"""
 from __future__ import annotations
 
 import re
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 
-import femcheck
+from docs_blocks import ROOT, PageRun, blocks, check_not_run, commands
 
-README = Path(femcheck.__file__).resolve().parent.parent / "README.md"
-
-
-def _block(lang: str, contains: str) -> str:
-    blocks = re.findall(rf"```{lang}\n(.*?)```", README.read_text(), flags=re.S)
-    found = [b for b in blocks if contains in b]
-    assert len(found) == 1, f"README: expected one {lang} block with {contains!r}"
-    return found[0]
+README = ROOT / "README.md"
+OPENING = ("python3 -m venv .venv && . .venv/bin/activate && pip install -c constraints.txt -e '.[viz]' && "
+           "femcheck suite quick\n"
+           "python3 -m venv .venv && . .venv/bin/activate && pip install -c constraints.txt -e '.[test]' && pytest\n")
+MAX_LINES = 150     # "a README of at most about 150 lines": the rest belongs in the documentation site
 
 
-def test_readme_scene_file_runs_and_passes(tmp_path):
-    f = tmp_path / "soft-roller.toml"
-    f.write_text(_block("toml", 'name = "soft-roller"'))
-    res = femcheck.run(f)
-    assert res.passed, res.problems
-    assert res.comparisons and all(c.verdict == "valid" for c in res.comparisons)
+def test_readme_opens_with_the_two_commands_and_ci_runs_the_second():
+    first = blocks(README)[0]
+    assert first.lang == "bash" and first.text == OPENING
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert OPENING.split("\n")[1] in ci.split("\n"), ".ci/run must run the README's second line verbatim"
 
 
-def test_readme_python_lines_run():
-    code = _block("python", "import femcheck")
-    exec(compile(code, "README", "exec"), {})
+def test_readme_is_short():
+    n = len(README.read_text().split("\n"))
+    assert n <= MAX_LINES, f"README has {n} lines; move the detail to docs/"
+
+
+def test_readme_picture_exists_and_is_small():
+    text = README.read_text()
+    pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
+    assert pictures
+    for p in pictures:
+        f = ROOT / p
+        assert f.is_file(), p
+        assert f.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert f.stat().st_size < 300_000, f"{p}: {f.stat().st_size} bytes"
+
+
+def test_readme_links_point_at_existing_files():
+    for target in re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", README.read_text()):
+        if "://" in target:
+            continue
+        assert (ROOT / target).exists(), f"README links to {target}, which does not exist"
+
+
+def test_readme_commands_parse():
+    n, written = 0, {b.file for b in blocks(README) if b.file}
+    for b in blocks(README):
+        if b.lang == "bash":
+            for command, expected in commands(b):
+                check_not_run(command, expected, written)
+                n += 1
+    assert n >= 6
+
+
+def test_readme_python_example_runs(tmp_path):
+    run = PageRun(tmp_path)
+    code = [b for b in blocks(README) if b.lang == "python" and not b.file]
+    assert code
+    for b in code:
+        run.run(b)
 
 
 @pytest.mark.slow
-def test_readme_pytest_example_runs_from_another_directory(tmp_path):
-    project = tmp_path / "project"
-    (project / "tests" / "scenes").mkdir(parents=True)
-    (project / "tests" / "scenes" / "soft-roller.toml").write_text(_block("toml", 'name = "soft-roller"'))
-    (project / "tests" / "test_roller.py").write_text(_block("python", "def test_soft_roller"))
-    # started from the project root: the relative scene path must be read from the test file's directory
-    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests"], cwd=project,
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert "1 passed" in r.stdout
+def test_readme_runs_as_written(tmp_path):
+    """Every block of the README in order, in a fresh directory: the CLI lines, the Python lines, and the pytest
+    example written to tests/ and run by pytest (the first block, the install, is what CI runs)."""
+    run = PageRun(tmp_path)
+    for b in blocks(README)[1:]:
+        run.run(b)
+    assert run.ran >= 4
