@@ -185,6 +185,16 @@ def _newton(law, C: np.ndarray, dirs: np.ndarray, half_clear: float, F: np.ndarr
     raise ConvergenceError("condensed bearing (active set)", it_total, np.inf, tol, "active set did not settle")
 
 
+def revised_compliance(C: np.ndarray, b0: float, widths: np.ndarray, k_in: float, k_out: float) -> np.ndarray:
+    """The rings' compliance C (Z, Z; computed under Hertz patches of half-width b0) revised for the current
+    half-widths ``widths`` (2, Z: inner, outer contact of each roller): the self terms become
+    C_kk + k_in ln(b0/b_in,k) + k_out ln(b0/b_out,k), k = 2 (1 - nu^2)/(pi E) per ring. The displacement at the
+    centre of a Hertz patch of unit load on an elastic half-plane is -(2 (1 - nu^2)/(pi E)) ln b + const (the
+    patch's far field does not depend on b), so a narrower patch (less load) is more compliant; cross terms
+    keep their b0 values (seed 003 eq 17's width revision, in the relative form of the module docstring)."""
+    return C + np.diag(k_in * np.log(b0 / widths[0]) + k_out * np.log(b0 / widths[1]))
+
+
 def solve(sec: BearingSection, s: CondensedSettings, progress=None) -> CondensedResult:
     law = sec.roller_law()
     b0, rr = reference_half_width(sec)
@@ -212,7 +222,7 @@ def solve(sec: BearingSection, s: CondensedSettings, progress=None) -> Condensed
     for it in range(1, 101):
         a_in, a_out = law.half_widths(np.maximum(P, 1e-300) * sec.length)
         new = np.stack([np.where(P > 0, a_in, b0), np.where(P > 0, a_out, b0)])
-        C = C_in + C_out + np.diag(k_in * np.log(b0 / new[0]) + k_out * np.log(b0 / new[1])) * (not sec.ring_material.rigid)
+        C = revised_compliance(C_in + C_out, b0, new, k_in, k_out) if not sec.ring_material.rigid else C_in + C_out
         P, delta, n_it, res = _newton(law, C, dirs, 0.5 * sec.clearance, F, P.copy(), delta, s.tol)
         newton += n_it
         change = float(np.abs(new / widths - 1.0).max())
