@@ -74,9 +74,10 @@ def _models(models: str | None) -> list[str] | None:
 
 def _write_json(path: Path, data) -> None:
     from .report.html import AtomicDir
+    from .result import dumps
 
     with AtomicDir(path.parent) as tmp:
-        (tmp / path.name).write_text(json.dumps(data, indent=1))
+        (tmp / path.name).write_text(dumps(data, indent=1))
 
 
 VERDICT_STYLE = {"valid": "green", "contrast": "dim", "not valid here": "red", "reference uncertified": "yellow",
@@ -89,17 +90,50 @@ def _verdict(v: str, contrast: bool = False) -> str:
     return f"[{VERDICT_STYLE.get(v, 'white')}]{text}[/]"
 
 
+def _quantity(name: str, value: float, params: dict, kind: str) -> str:
+    """``name=value unit`` for the terminal (unit from :func:`femcheck.report.units.unit_of`)."""
+    from .report.units import unit_of
+
+    unit = unit_of(name, params, kind)
+    return f"{name}={value:.5g}" + ("" if unit in ("-", "") else f" {unit}")
+
+
+def conclusion(res, elapsed_s: float, written: str | None) -> tuple[str, int]:
+    """The closing line of ``femcheck run`` and its exit code: PASS (0) / FAIL (1) with the counts of each
+    verdict, or NOTHING COMPARED (1: a run that checked nothing must not look like a pass), then the time and
+    where the report went (or how to write one)."""
+    counts: dict[str, int] = {}
+    for c in res.comparisons:
+        key = "contrast outside its band" if c.verdict == "not valid here" and c.contrast else c.verdict
+        counts[key] = counts.get(key, 0) + 1
+    tail = f"; {len(res.models)} model(s) in {elapsed_s:.1f} s; " + (
+        written or "nothing written (--out DIR writes the report, --json prints the results)")
+    if not res.comparisons:
+        refs = ", ".join(res.params.get("models.references", ()))
+        why = "; ".join(f"{n} {m.status}" + (f": {m.error}" if m.error else "") for n, m in res.models.items()
+                        if n in res.params.get("models.references", ()) and m.status != "ok")
+        return (f"NOTHING COMPARED: no reference ran (models.references: {refs}"
+                + (f"; {why}" if why else "") + ")" + tail), 1
+    order = ("valid", "contrast", "reference uncertified", "contrast outside its band", "not valid here", "ungraded")
+    parts = ", ".join(f"{counts[v]} {v}" for v in order[1:] if counts.get(v))
+    head = "PASS" if res.passed else "FAIL"
+    text = f"{head}: {counts.get('valid', 0)} of {len(res.comparisons)} comparisons valid" + (
+        f" ({parts})" if parts else "")
+    failed = [n for n, m in res.models.items() if m.status == "failed"]
+    if failed:
+        text += f"; failed: {', '.join(failed)}"
+    return text + tail, 0 if res.passed else 1
+
+
 def _print_run(res) -> None:
     t = Table(title=f"{res.scene}: models")
-    for col in ("model", "status", "time (s)", "quantities", "note"):
+    for col in ("model", "status", "time (s)", "quantities (SI)", "note"):
         t.add_column(col)
     for name, m in res.models.items():
-        q = "  ".join(f"{k}={v:.5g}" for k, v in m.quantities.items())
+        q = "  ".join(_quantity(k, v, res.params, res.kind) for k, v in m.quantities.items())
         t.add_row(name, m.status + (" (cached)" if m.cached else ""), f"{m.time_s:.3f}", q, m.error or "")
     out_console.print(t)
     if not res.comparisons:
-        refs = ", ".join(res.params.get("models.references", ()))
-        out_console.print(f"nothing compared: no reference ran (models.references: {refs})")
         return
     c = Table(title="comparisons")
     for col in ("model", "reference", "quantity", "rel. error", "tolerance", "verdict", "note"):
@@ -183,15 +217,23 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         # the directory the user names; one-off variations only go to the cache
         store = references is not None or (sc.builtin and not set_)
         res = run(sc, rebuild=rebuild, progress=advance, store_references=store, references_dir=references)
+    written = None
     if out is not None:
         from .report.html import write_report
 
-        write_report([res], out, sc.name, time.perf_counter() - t0)
+        written = f"report {write_report([res], out, sc.name, time.perf_counter() - t0)}"
+    line, code = conclusion(res, time.perf_counter() - t0, written)
     if json_out:
-        sys.stdout.write(json.dumps(res.to_json()) + "\n")
+        from .result import dumps
+
+        sys.stdout.write(dumps(res.to_json()) + "\n")
+        err_console.print(line, highlight=False, soft_wrap=True)
     else:
         _print_run(res)
-    raise typer.Exit(0 if res.passed else 1)
+        colour = "green" if line.startswith("PASS") else "red"
+        out_console.print(f"[{colour}]{line.partition(':')[0]}[/]:{line.partition(':')[2]}", highlight=False,
+                          soft_wrap=True)
+    raise typer.Exit(code)
 
 
 @app.command()
@@ -238,6 +280,7 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
               scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP)) -> None:
     """Time-vs-error sweep of each model's discretisation: table, bench.json, bench.csv, log-log plot."""
     from .bench import bench, scaling_exponent
+    from .result import dumps
     from .report import charts
     from .report.html import AtomicDir
 
@@ -263,8 +306,8 @@ def bench_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     out_console.print(t)
     exps = {m: scaling_exponent(rows, m) for m in sorted({r["model"] for r in rows})}
     with AtomicDir(out) as tmp:
-        (tmp / "bench.json").write_text(json.dumps({"scene": sc.name, "rows": rows, "time_vs_size_exponent": exps},
-                                                   indent=1))
+        (tmp / "bench.json").write_text(dumps({"scene": sc.name, "rows": rows, "time_vs_size_exponent": exps},
+                                              indent=1))
         cols = ["model", "setting", "size", "iterations", "time_s", "status"] + sorted(
             {k for r in rows for k in r if k.startswith("err_")})
         lines = [",".join(cols)] + [",".join(json.dumps(r.get(c, "")).replace(",", ";") for c in cols)
@@ -291,6 +334,7 @@ def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     compared with nothing. FE references run only when --models names them (minutes and GB per case)."""
     from .problems import problem
     from .report.html import AtomicDir
+    from .result import dumps
     from .stability import default_models, stress
 
     sc = _scene(scene, set_, models)
@@ -328,7 +372,7 @@ def stress_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
     bad = [c for c in cases if c.status in ("failed", "inaccurate")]
     unchecked = [c for c in cases if c.status == "unchecked"]
     with AtomicDir(out) as tmp:
-        (tmp / "stress.json").write_text(json.dumps({"scene": sc.name, "models": names,
+        (tmp / "stress.json").write_text(dumps({"scene": sc.name, "models": names,
                                                     "cases": [c.to_json() for c in cases],
                                                     "failures": [c.label for c in bad],
                                                     "unchecked": [c.label for c in unchecked]}, indent=1))

@@ -1,6 +1,8 @@
 """Result objects shared by every model, the runner, the comparison and the report."""
 from __future__ import annotations
 
+import json
+import math
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
@@ -108,6 +110,34 @@ class RunResult:
         if self.not_compared:
             out["not_compared"] = dict(self.not_compared)
         return out
+
+
+NONFINITE = {math.inf: "Infinity", -math.inf: "-Infinity"}
+
+
+def strict_json(obj: Any) -> Any:
+    """``obj`` with every non-finite number written as the string "Infinity", "-Infinity" or "NaN" (what
+    Python's ``float()`` and JavaScript's ``Number()`` read back), so that :func:`dumps` writes standard JSON (RFC
+    8259 has no infinite numbers; an infinite fatigue life is one)."""
+    if isinstance(obj, dict):
+        return {str(k): strict_json(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [strict_json(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return strict_json(obj.tolist())
+    if isinstance(obj, (float, np.floating)):
+        v = float(obj)
+        return v if math.isfinite(v) else NONFINITE.get(v, "NaN")
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+def dumps(obj: Any, **kw) -> str:
+    """Standard JSON of ``obj`` (:func:`strict_json`; a bare NaN or Infinity is refused)."""
+    return json.dumps(strict_json(obj), allow_nan=False, **kw)
 
 
 def _jsonable(obj: Any) -> Any:

@@ -33,6 +33,10 @@ from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 
 MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "measured")
+# Forces are per roller (N; the 2D section's laws give a roller's load for its effective length).
+UNITS = {"q_max": "N", "radial_deflection": "m", "loaded_rollers": "- (count)", "load_zone_angle": "rad",
+         "load_zone_parameter": "- (eps)", "stribeck_factor": "- (Z Q_max / F_r)", "row_share": "%",
+         "rating_life": "1e6 rev", "roller_loads": "- (max |Q - Q_ref| / max Q_ref)", "total_force": "N"}
 LAWS = ("power", "palmgren", "iso16281", "plane_strain")
 MAX_PRELOAD = 0.01          # |P_d| / D: beyond, the rollers would overlap the raceways by more than small strain
 ALTERNATIVES: tuple = ()

@@ -50,6 +50,9 @@ from ..scene import Key, Scene, elastic, material_keys, model_keys, tolerance_ke
 from . import _srb_rolling_out as out
 
 MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem")
+# Table 2's normalisation: forces divided by mu N
+UNITS = {"f_x": "- (F / mu N)", "f_lat": "- (F / mu N)", "d_y": "m", "tilt": "rad", "skew": "rad",
+         "omega_m": "rad/s", "omega_R": "rad/s"}
 TABLE_2_QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y")
 
 SCHEMA: dict[str, Key] = {

@@ -13,7 +13,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from .. import __version__
 from ..compare import certificates
-from ..result import VERDICTS, RunResult
+from ..result import VERDICTS, RunResult, dumps
 from . import charts, dashboard, fe_plots, kinds, pictures, plots
 from .sources import cite
 from .units import unit_of
@@ -99,7 +99,7 @@ def write_report(runs: list[RunResult], out: Path, title: str, elapsed_s: float)
                            "extra": kinds.section(r, tmp, prefix)})
         chart = charts.cost_error(rows, tmp / "dashboard-cost-error.png")
         data = summary(runs, title, elapsed_s)
-        (tmp / "summary.json").write_text(json.dumps(data, indent=1))
+        (tmp / "summary.json").write_text(dumps(data, indent=1))
         by_verdict = {v: sum(x["verdict"] == v for x in data["validity"]) for v in reversed(VERDICTS)}
         counts = {"total": len(data["validity"]), "by_verdict": {v: n for v, n in by_verdict.items() if n}}
         html = _env().get_template("index.html.j2").render(title=title, scenes=scenes, summary=data, chart=chart,
@@ -115,7 +115,7 @@ def write_map_report(vmap, out: Path, elapsed_s: float) -> Path:
                 for c in vmap.comparisons()]
         data = {"femcheck_version": __version__, "created": time.strftime("%Y-%m-%dT%H:%M:%S"),
                 "elapsed_s": elapsed_s, **vmap.to_json()}
-        (tmp / "map.json").write_text(json.dumps(data, indent=1))
+        (tmp / "map.json").write_text(dumps(data, indent=1))
         html = _env().get_template("map.html.j2").render(
             m=vmap, figs=figs, statements=data["statements"], version=__version__, created=data["created"],
             elapsed_s=elapsed_s)
