@@ -151,17 +151,19 @@ def _print_dashboard(runs) -> None:
     """The suite's validity dashboard: one row per scene and model (the report's table)."""
     from .report.dashboard import rows
 
-    t = Table(title="validity: worst comparison of each model against each reference")
-    for col in ("scene", "model", "role", "worst error / tolerance", "verdict", "run time"):
+    def shown(c) -> str:
+        return f"{c.rel_error:.2g} {c.quantity}" + ("" if c.tolerance is None else f" (tol {c.tolerance:.2g})")
+
+    t = Table(title="validity: one verdict per reference; the design quantity's error, and the worst if another")
+    for col in ("scene", "model", "role", "error against each reference", "verdict", "run time"):
         t.add_column(col)
     for run in runs:
         for i, r in enumerate(rows(run)):
-            worst = "; ".join(f"{c.reference}: {c.rel_error:.2g} {c.quantity} (tol {c.tolerance:.2g})"
-                              if c.tolerance is not None else f"{c.reference}: {c.rel_error:.2g} {c.quantity}"
-                              for c in r.per_reference)
+            errors = "\n".join(f"{rv.reference}: " + "; ".join(shown(c) for c in rv.shown) for rv in r.per_reference)
+            verdicts = "\n".join(_verdict(rv.verdict, r.role == "contrast") for rv in r.per_reference)
             scene = (f"{run.scene} " + ("[green]PASS[/]" if run.passed else "[red]FAIL[/]")) if i == 0 else ""
-            t.add_row(scene, r.model, r.role, worst or r.note, _verdict(r.verdict, r.role == "contrast"),
-                      r.time_text, end_section=i == len(run.models) - 1)
+            t.add_row(scene, r.model, r.role, errors or r.note, verdicts or _verdict(r.verdict), r.time_text,
+                      end_section=i == len(run.models) - 1)
     out_console.print(t)
 
 

@@ -46,9 +46,9 @@ def test_dashboard_rows_and_validity(tmp_path):
     rows = {r.model: r for r in dashboard.rows(run)}
     assert rows["analytic"].verdict == "reference" and rows["analytic"].role == "reference"
     assert rows["bem"].role == "contrast" and rows["bem"].verdict == "not valid here"     # 20 % off a 1 % band
-    # the worst comparison against each reference: bem against analytic and against fem
-    assert {c.reference for c in rows["bem"].per_reference} == {"analytic", "fem"}
-    assert rows["bem"].per_reference[0].quantity == "p_max"
+    # one verdict per reference: bem against analytic and against fem, each with the design quantity (p_max)
+    assert {rv.reference for rv in rows["bem"].per_reference} == {"analytic", "fem"}
+    assert all(rv.design.quantity == "p_max" and rv.worst.quantity == "p_max" for rv in rows["bem"].per_reference)
     assert rows["fem"].time_text == "stored, solved in 183 s" and rows["fem"].time_s == 183.0
     index = write_report([run], tmp_path / "rep", "toy", 1.0)
     data = json.loads((tmp_path / "rep" / "summary.json").read_text())
@@ -179,3 +179,26 @@ def test_quick_report_top_shows_every_scene_verdict_and_cost(tmp_path, monkeypat
     for row in m["rows"]:
         assert row["bottom"] <= 1000 and row["right"] <= 1400, row
         assert row["verdict"] and row["time"] and not row["clipped"], row
+
+
+def test_one_verdict_per_reference_and_the_design_quantity():
+    """An uncertified FE reference does not hide a valid comparison with the closed form; a bearing row shows
+    Q_max (the kind's design quantity) even where another quantity is worse against its tolerance."""
+    from femcheck.result import Comparison
+
+    def comp(model, ref, q, err, tol, verdict):
+        return Comparison(q, model, ref, 1.0 + err, 1.0, err, tol, verdict == "valid", verdict)
+
+    ok = ModelResult("bem", "ok", 0.01, {"p_max": 1.011})
+    run = RunResult("hertz-line", {"models.references": ["analytic", "fem"]}, {"bem": ok},
+                    [comp("bem", "analytic", "p_max", 0.011, 0.02, "valid"),
+                     comp("bem", "fem", "p_max", 0.012, 0.02, "reference uncertified")], "line_contact")
+    (row,) = dashboard.rows(run)
+    assert [(rv.reference, rv.verdict) for rv in row.per_reference] == [("analytic", "valid"),
+                                                                        ("fem", "reference uncertified")]
+    bearing = RunResult("crb-elastic-rings", {"models.references": ["fem"]}, {"rigid_ring": ok},
+                        [comp("rigid_ring", "fem", "load_zone_angle", 0.123, 0.05, "not valid here"),
+                         comp("rigid_ring", "fem", "q_max", 0.157, 0.2, "contrast")], "bearing_load")
+    (row,) = dashboard.rows(bearing)
+    (rv,) = row.per_reference
+    assert rv.design.quantity == "q_max" and rv.worst.quantity == "load_zone_angle" and rv.verdict == "not valid here"

@@ -33,6 +33,8 @@ from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 
 MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "measured")
+# what a bearing is sized with: the largest roller load (life, static capacity), then the deflection
+DESIGN_QUANTITIES = ("q_max", "row_share", "radial_deflection")
 # Forces are per roller (N; the 2D section's laws give a roller's load for its effective length).
 UNITS = {"q_max": "N", "radial_deflection": "m", "loaded_rollers": "- (count)", "load_zone_angle": "rad",
          "load_zone_parameter": "- (eps)", "stribeck_factor": "- (Z Q_max / F_r)", "row_share": "%",

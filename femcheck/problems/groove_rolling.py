@@ -44,6 +44,7 @@ from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("cect", "planar", "fem")
+DESIGN_QUANTITIES = ("creepage_x", "friction_power", "p_max")     # the conformal contact's rolling loss first
 QUANTITIES = ("approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
               "spin_moment", "friction_power")
 MAX_HALF_ANGLE = np.radians(30.0)     # contact half-angle on the groove beyond which the model is not applicable

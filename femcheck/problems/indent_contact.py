@@ -26,6 +26,7 @@ from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_k
 from . import _indent_life as indent_life, _life_output as life_output
 
 MODEL_NAMES = ("analytic", "bem", "bem_transient")
+DESIGN_QUANTITIES = ("life_ratio", "additional_pressure", "stress_ratio", "p_max")
 
 SCHEMA: dict[str, Key] = {
     "geometry.radius": Key("float", "m", "ball radius R", lo=0.0),

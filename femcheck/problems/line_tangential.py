@@ -34,6 +34,7 @@ from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "fem")
+DESIGN_QUANTITIES = ("creep_force_x", "shift", "stick_half_width", "p_max")
 MAX_A_OVER_R = 0.1       # half-space and small-strain limit, as for hertz-line
 QUASI_IDENTICAL_TOL = 1e-9   # |kappa E*| below this: no normal-tangential coupling (Carter applies exactly)
 STRESS_QUANTITIES = ("creep_force_x", "adhesion_length", "shift", "stick_half_width")

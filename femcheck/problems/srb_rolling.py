@@ -50,6 +50,8 @@ from ..scene import Key, Scene, elastic, material_keys, model_keys, tolerance_ke
 from . import _srb_rolling_out as out
 
 MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem")
+# seed 000's question: the lateral forces (their sum loads the cage and flanges), then the rolling-direction ones
+DESIGN_QUANTITIES = ("f_lat_sum", "f_lat", "f_x", "d_y")
 # Table 2's normalisation: forces divided by mu N
 UNITS = {"f_x": "- (F / mu N)", "f_lat": "- (F / mu N)", "d_y": "m", "tilt": "rad", "skew": "rad",
          "omega_m": "rad/s", "omega_R": "rad/s"}
