@@ -116,7 +116,9 @@ def conclusion(res, elapsed_s: float, written: str | None) -> tuple[str, int]:
                 + (f"; {why}" if why else "") + ")" + tail), 1
     order = ("valid", "contrast", "reference uncertified", "contrast outside its band", "not valid here", "ungraded")
     parts = ", ".join(f"{counts[v]} {v}" for v in order[1:] if counts.get(v))
-    head = "PASS" if res.passed else "FAIL"
+    head = res.verdict
+    if head == "INFORMATIONAL":
+        return f"INFORMATIONAL: only contrast models compared, none claimed valid here ({parts})" + tail, 0
     text = f"{head}: {counts.get('valid', 0)} of {len(res.comparisons)} comparisons valid" + (
         f" ({parts})" if parts else "")
     failed = [n for n, m in res.models.items() if m.status == "failed"]
@@ -147,6 +149,10 @@ def _print_run(res) -> None:
         out_console.print(f"[red]{res.scene}: {p}[/]")
 
 
+def _scene_verdict(v: str) -> str:
+    return f"[{ {'PASS': 'green', 'INFORMATIONAL': 'blue'}.get(v, 'red') }]{v}[/]"
+
+
 def _print_dashboard(runs) -> None:
     """The suite's validity dashboard: one row per scene and model (the report's table)."""
     from .report.dashboard import rows
@@ -161,7 +167,7 @@ def _print_dashboard(runs) -> None:
         for i, r in enumerate(rows(run)):
             errors = "\n".join(f"{rv.reference}: " + "; ".join(shown(c) for c in rv.shown) for rv in r.per_reference)
             verdicts = "\n".join(_verdict(rv.verdict, r.role == "contrast") for rv in r.per_reference)
-            scene = (f"{run.scene} " + ("[green]PASS[/]" if run.passed else "[red]FAIL[/]")) if i == 0 else ""
+            scene = f"{run.scene} {_scene_verdict(run.verdict)}" if i == 0 else ""
             t.add_row(scene, r.model, r.role, errors or r.note, verdicts or _verdict(r.verdict), r.time_text,
                       end_section=i == len(run.models) - 1)
     out_console.print(t)
@@ -232,8 +238,7 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         err_console.print(line, highlight=False, soft_wrap=True)
     else:
         _print_run(res)
-        colour = "green" if line.startswith("PASS") else "red"
-        out_console.print(f"[{colour}]{line.partition(':')[0]}[/]:{line.partition(':')[2]}", highlight=False,
+        out_console.print(f"{_scene_verdict(line.partition(':')[0])}:{line.partition(':')[2]}", highlight=False,
                           soft_wrap=True)
     raise typer.Exit(code)
 

@@ -103,8 +103,18 @@ class RunResult:
     def passed(self) -> bool:
         return not self.problems
 
+    @property
+    def verdict(self) -> str:
+        """The scene's verdict: FAIL (a problem), NOTHING COMPARED, INFORMATIONAL (only contrast models were
+        compared: nothing here is claimed valid, so nothing can pass) or PASS."""
+        if self.problems:
+            return "FAIL"
+        if not self.comparisons:
+            return "NOTHING COMPARED"
+        return "INFORMATIONAL" if all(c.contrast for c in self.comparisons) else "PASS"
+
     def to_json(self) -> dict[str, Any]:
-        out = {"scene": self.scene, "params": _jsonable(self.params),
+        out = {"scene": self.scene, "verdict": self.verdict, "params": _jsonable(self.params),
                "models": {k: v.to_json() for k, v in self.models.items()},
                "comparisons": [c.to_json() for c in self.comparisons]}
         if self.not_compared:

@@ -99,16 +99,18 @@ def _load_table(run: RunResult) -> Table | None:
         row = [int(j), float(np.degrees(psi[j]))] + [float(models[n].fields["roller_loads"][j]) for n in names]
         row += [float(100 * (models[n].fields["roller_loads"][j] - qref[j]) / qref.max()) for n in names if n != ref_name]
         rows.append(row)
-    zone = ["load-zone half-angle (deg)", ""] + \
-           [float(np.degrees(models[n].quantities.get("load_zone_angle", np.nan))) for n in names] + \
-           ["" for n in names if n != ref_name]
-    rows.append(zone)
+    # the load-zone half-angle of a single row (several rows: each row has its own, not reported)
+    if any("load_zone_angle" in models[n].quantities for n in names):
+        rows.append(["load-zone half-angle (deg)", ""] +
+                    [float(np.degrees(models[n].quantities["load_zone_angle"])) if "load_zone_angle" in
+                     models[n].quantities else "" for n in names] + ["" for n in names if n != ref_name])
     rows_note = " Several rows: each roller position's largest load over the rows." if \
         any("row_shares" in m.fields for m in models.values()) else ""
+    against = ("where rigid-ring theory departs from the FE (rings' compliance, housing support) shows here"
+               if ref_name == "fem" else f"no FE reference in this scene; {ref_name} is the first model shown")
     return Table("Roller loads by model", header, rows,
                  f"Rollers sorted by their angle psi from the load line. Differences relative to the {ref_name} "
-                 "Q_max: where rigid-ring theory departs from the FE (rings' compliance, housing support) shows "
-                 "here." + rows_note)
+                 f"Q_max: {against}." + rows_note)
 
 
 def _table3(run: RunResult) -> Table | None:
@@ -139,9 +141,11 @@ def _table3(run: RunResult) -> Table | None:
 
 def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
     out = KindSection()
+    fe = "fem" in run.models
     for name, fn, caption in (
-            ("polar", _polar, "Roller loads (N) of every model around the bearing, the FE reference as bars; "
-                              "dotted lines mark each model's load-zone half-angle."),
+            ("polar", _polar, "Roller loads (N) of every model around the bearing" +
+             (", the FE reference as bars" if fe else "") + "; dotted lines mark each model's load-zone "
+             "half-angle."),
             ("rings", _rings, "FE finest level: elastic deformation of the inner (blue, relative to the shaft it "
                               "is tied to) and outer ring (red, in the housing) over the undeformed rings (grey), "
                               "magnified; rollers shaded by their load.")):
