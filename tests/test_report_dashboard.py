@@ -92,7 +92,7 @@ def test_convergence_is_drawn_against_the_reported_value(tmp_path, monkeypatch):
     assert len(y) == 2 and np.allclose(y, np.abs(np.array([2.1, 2.05]) / 2.025 - 1)) and "not certified" in label
 
 
-def test_maps_keep_equal_axes_and_clip_a_singular_peak(tmp_path, monkeypatch):
+def test_maps_keep_true_aspect_or_say_the_stretch_and_clip_a_singular_peak(tmp_path, monkeypatch):
     x = np.linspace(-1e-4, 1e-4, 21)
     y = np.linspace(-4e-3, 4e-3, 161)                         # a 1:40 footprint
     p = np.outer(np.sqrt(np.clip(1 - (x / 1e-4) ** 2, 0, None)), np.ones_like(y)) * 1e9
@@ -110,11 +110,17 @@ def test_maps_keep_equal_axes_and_clip_a_singular_peak(tmp_path, monkeypatch):
 
     monkeypatch.setattr(plots.plt.Axes, "pcolormesh", spy)
     assert plots.pressure_map(run, tmp_path / "m.png")
-    assert seen["aspect"] == 1.0                              # equal axes: 1:40 looks 1:40
+    # a 1:40 footprint at true aspect would be a 0.14-inch sliver: x is stretched by a stated factor
+    assert seen["aspect"] == 12.0
+    assert plots._map_figure(x, y)[2] == "x stretched 12x"
     assert seen["vmax"] < 1.01 and seen["vmax"] > 0.9         # GPa: the spike does not set the scale
     run.not_compared = {}
     plots.pressure_map(run, tmp_path / "m2.png")
     assert seen["vmax"] == pytest.approx(50.0)
+    # a 1:2 footprint reads at its true aspect
+    wide = ModelResult("bem", "ok", 0.1, {}, fields={"map_x": x, "map_y": y / 20, "pressure_map": p})
+    plots.pressure_map(RunResult("roller", {}, {"bem": wide}, [], "roller_contact"), tmp_path / "m3.png")
+    assert seen["aspect"] == 1.0
 
 
 def test_cattaneo_analytic_traction_has_the_friction_sign_and_spans_the_contact():

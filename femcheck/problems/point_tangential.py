@@ -300,7 +300,14 @@ def _simplified(name: str, params: dict[str, Any], compute: Callable[..., Any], 
          "creep_force_y": float(res.creep_force_y), "spin_moment": float(res.spin_moment)}
     if res.adhesion_fraction is not None:
         q["adhesion_fraction"] = float(res.adhesion_fraction)
-    return ModelResult(name, quantities=q, stats=stats)
+    fields = {}
+    if all(isinstance(getattr(res, k, None), np.ndarray) and getattr(res, k).ndim == 2 for k in ("x", "y", "px")):
+        # the traction along the rolling direction on the row of nodes nearest the centre line y = 0, for the
+        # report's traction overlay beside the exact theory's
+        j = int(np.argmin(np.abs(res.y[:, 0])))
+        order = np.argsort(res.x[j])
+        fields = {"x": res.x[j][order], "traction_x": res.px[j][order]}
+    return ModelResult(name, quantities=q, stats=stats, fields=fields)
 
 
 def linear(scene: Scene, progress=None) -> ModelResult:

@@ -12,35 +12,48 @@ VERDICT_COLOUR = {"valid": "tab:green", "contrast": "0.55", "not valid here": "t
                   "reference uncertified": "tab:orange", "ungraded": "tab:purple"}
 
 
+TIME_FLOOR = 1e-4          # s: the chart's left edge
+
+
 def cost_error(rows, path: Path) -> str | None:
     """Run time (s) against the largest relative error on a scalar quantity, one point per scene and model
     (dashboard rows with a comparison), coloured by verdict, hollow for contrasts. A stored reference's time is
-    the time it was solved in; times below 0.1 ms are drawn at 0.1 ms."""
+    the time it was solved in; times below TIME_FLOOR are drawn there as left-pointing triangles (not measured
+    there: faster)."""
     pts = [r for r in rows if r.max_rel_error is not None]
     if not pts:
         return None
-    fig, ax = plt.subplots(figsize=(9.2, 5.0))
+    fig, ax = plt.subplots(figsize=(11.0, 6.2))
     placed: list[tuple[float, float]] = []          # label positions (log10 t, log10 e + offset) already used
+    step = 0.11                                     # label spacing in decades of error (8-point labels)
+    floored = False
+    right = np.log10(max(max(r.time_s for r in pts), TIME_FLOOR))      # labels of the right-most points go left
     for r in sorted(pts, key=lambda r: (r.time_s, r.max_rel_error)):
         colour = VERDICT_COLOUR.get(r.verdict, "k")
-        t, e = max(r.time_s, 1e-4), max(r.max_rel_error, 1e-7)
-        ax.loglog(t, e, "o", ms=6, color=colour, mfc="none" if r.role == "contrast" else colour)
+        below = r.time_s < TIME_FLOOR
+        floored |= below
+        t, e = max(r.time_s, TIME_FLOOR), max(r.max_rel_error, 1e-7)
+        # a time below the floor is not a measurement at the floor: drawn as a left-pointing triangle
+        ax.loglog(t, e, "<" if below else "o", ms=7, color=colour, mfc="none" if r.role == "contrast" else colour)
         lt, le = np.log10(t), np.log10(e)
-        while any(abs(lt - pt) < 0.9 and abs(le - pe) < 0.07 for pt, pe in placed):
-            le -= 0.07                                  # move the label down until it does not cover another
+        while any(abs(lt - pt) < 1.1 and abs(le - pe) < step for pt, pe in placed):
+            le -= step                                  # move the label down until it does not cover another
         placed.append((lt, le))
-        ax.annotate(f"{r.scene}:{r.model}", (t, e), xytext=(t * 1.15, 10**le), fontsize=5.5, color="0.25",
-                    va="center", arrowprops=dict(arrowstyle="-", color="0.7", lw=0.4) if le != np.log10(e)
+        left = lt > right - 0.5
+        ax.annotate(f"{r.scene}:{r.model}", (t, e), xytext=(t / 1.2 if left else t * 1.2, 10**le), fontsize=7.5,
+                    color="0.2", va="center", ha="right" if left else "left", arrowprops=dict(arrowstyle="-", color="0.7", lw=0.5) if le != np.log10(e)
                     else None)
     for verdict, colour in VERDICT_COLOUR.items():
         if any(r.verdict == verdict for r in pts):
             ax.plot([], [], "o", color=colour, label=verdict)
     ax.plot([], [], "o", mfc="none", color="0.55", label="hollow: contrast model")
+    if floored:
+        ax.plot([], [], "<", color="0.55", label=f"faster than {TIME_FLOOR * 1e3:g} ms (drawn there)")
     ax.set_xlabel("run time (s): solve time; stored references: the time they were solved in")
     ax.set_ylabel("largest relative error (scalar quantities)")
     ax.set_title("Cost against error of every model of every scene", fontsize=10)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return save_figure(fig, path)
 
 

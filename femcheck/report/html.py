@@ -1,7 +1,6 @@
 """HTML report + summary.json for one or more scene runs, written atomically into an output directory."""
 from __future__ import annotations
 
-import json
 import os
 import shutil
 import tempfile

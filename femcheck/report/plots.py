@@ -11,9 +11,14 @@ import numpy as np  # noqa: E402
 
 from ..result import RunResult  # noqa: E402
 
-STYLE = {"analytic": dict(color="k", lw=1.2), "bem": dict(color="tab:blue", ls="--", lw=1.4),
-         "fem": dict(color="tab:red", marker=".", ms=3, ls="none"),
-         "finite_line": dict(color="tab:green", marker="+", ms=4, ls="-", lw=0.8)}
+# Drawn in this order, widest first, so a curve that coincides with another stays visible under it.
+STYLE = {"exact": dict(color="tab:blue", lw=3.0, alpha=0.6, zorder=1), "analytic": dict(color="k", lw=1.2, zorder=3),
+         "bem": dict(color="tab:blue", ls="--", lw=1.4, zorder=2),
+         "fem": dict(color="tab:red", marker=".", ms=3, ls="none", zorder=4),
+         "finite_line": dict(color="tab:green", marker="+", ms=4, ls="-", lw=0.8, zorder=2),
+         "fastsim": dict(color="tab:orange", ls="-.", lw=1.3, zorder=3),
+         "full_slip": dict(color="tab:green", ls=":", lw=1.6, zorder=3),
+         "strip": dict(color="tab:purple", ls="--", lw=1.2, zorder=3)}
 
 
 def save_figure(fig, path: Path) -> str:
@@ -48,18 +53,34 @@ def singular_note(run: RunResult) -> str:
     return f"{', '.join(grows)} grows with refinement by nature" if grows else ""
 
 
+def profile(fields: dict, x_field: str, p_field: str) -> tuple[np.ndarray, np.ndarray, bool] | None:
+    """(x, p, cut) of a model's pressure along ``x_field``: the 1D profile itself, or, where the model gives a
+    field over (x, y) (``p_field`` of shape (nx, ny), or ``pressure_map`` over ``map_x`` x ``map_y``), its cut along
+    x through the peak (``cut`` True)."""
+    if x_field in fields and p_field in fields:
+        x, p = np.asarray(fields[x_field]), np.asarray(fields[p_field])
+    elif x_field == "x" and p_field == "pressure" and "pressure_map" in fields and "map_x" in fields:
+        x, p = np.asarray(fields["map_x"]), np.asarray(fields["pressure_map"])
+    else:
+        return None
+    if p.ndim == 2 and p.shape[0] == x.size:
+        return x, p[:, int(np.argmax(p.max(axis=0)))], True
+    return (x, p, False) if p.shape == x.shape else None
+
+
 def _overlay(run: RunResult, path: Path, x_field: str, p_field: str, xlabel: str, ylabel: str, title: str,
              positive_x: bool = False, suffix: str = "", part: str = "") -> str | None:
-    """Profiles ``p_field`` against ``x_field`` of every ok model that has them, on one axis (mm, GPa)."""
+    """Profiles ``p_field`` against ``x_field`` of every ok model that has them, on one axis (mm, GPa); a model
+    with a 2D field contributes its cut through the peak (:func:`profile`)."""
     xf, pf = x_field + suffix, p_field + suffix
-    models = {k: m for k, m in run.models.items() if m.status == "ok" and pf in m.fields and xf in m.fields}
-    if not models:
+    curves = {k: c for k, m in run.models.items() if m.status == "ok" and (c := profile(m.fields, xf, pf))}
+    if not curves:
         return None
     fig, ax = plt.subplots(figsize=(6.4, 3.7))
-    for name, m in models.items():
-        x, p = m.fields[xf], m.fields[pf]
+    for name, (x, p, cut) in curves.items():
         keep = x >= 0 if positive_x else np.ones(x.shape, dtype=bool)
-        ax.plot(x[keep] * 1e3, p[keep] / 1e9, label=name, **STYLE.get(name, {}))
+        ax.plot(x[keep] * 1e3, p[keep] / 1e9, label=name + (" (cut through the peak)" if cut else ""),
+                **STYLE.get(name, {}))
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(f"{run.scene}: {title}" + (f" ({part})" if part else ""))
@@ -86,17 +107,20 @@ def axial_profile(run: RunResult, path: Path) -> str | None:
                     "axial pressure profile")
 
 
+MAP_WIDTH, MAP_MIN_HEIGHT, MAP_MAX_HEIGHT = 5.6, 1.6, 4.5       # inches of the map axis
+
+
 def _map_figure(x: np.ndarray, y: np.ndarray) -> tuple:
-    """A figure whose map axis keeps equal scales (a 1:40 ellipse looks 1:40): horizontal y, vertical x (mm)."""
+    """(figure, axis, scale note) for a map with y horizontal and x vertical (mm). True aspect where it reads (a
+    1:4 ellipse looks 1:4); a contact so long that its true aspect would leave a sliver under MAP_MIN_HEIGHT
+    inches (a roller's 0.5 mm x 20 mm) is stretched along x by a stated factor (``note``: "x stretched 12x")."""
     width, height = float(np.ptp(y)) or 1.0, float(np.ptp(x)) or 1.0
-    ax_w = 5.6
-    ax_h = float(np.clip(ax_w * height / width, 0.25, 4.5))
-    fig, ax = plt.subplots(figsize=(ax_w + 1.4, ax_h + 1.5))
-    ax.set_aspect("equal")
-    if ax_h < 1.0:                   # a thin strip: its two ends only
-        ends = [float(x.min()) * 1e3, float(x.max()) * 1e3]
-        ax.set_yticks(ends, [f"{v:.2g}" for v in ends], fontsize=7)
-    return fig, ax
+    true_h = MAP_WIDTH * height / width
+    stretch = 1.0 if true_h >= MAP_MIN_HEIGHT else float(np.ceil(MAP_MIN_HEIGHT / true_h))
+    ax_h = min(true_h * stretch, MAP_MAX_HEIGHT)
+    fig, ax = plt.subplots(figsize=(MAP_WIDTH + 1.4, ax_h + 1.5))
+    ax.set_aspect(stretch)
+    return fig, ax, ("equal axes" if stretch == 1.0 else f"x stretched {stretch:g}x")
 
 
 def pressure_map(run: RunResult, path: Path) -> str | None:
@@ -108,7 +132,7 @@ def pressure_map(run: RunResult, path: Path) -> str | None:
     if m is None:
         return None
     x, y, p = m.fields["map_x"], m.fields["map_y"], m.fields["pressure_map"]
-    fig, ax = _map_figure(x, y)
+    fig, ax, scale = _map_figure(x, y)
     note = singular_note(run)
     vmax = float(np.percentile(p[p > 0], 99)) if note and np.any(p > 0) else float(p.max())
     cs = ax.pcolormesh(y * 1e3, x * 1e3, p / 1e9, shading="nearest", cmap="magma", vmin=0, vmax=vmax / 1e9)
@@ -119,7 +143,7 @@ def pressure_map(run: RunResult, path: Path) -> str | None:
     ax.set_xlabel("y (mm)")
     ax.set_ylabel("x (mm)")
     part = parts(run)[0][1]
-    ax.set_title(f"{run.scene}: contact pressure ({m.model}" + (f", {part}" if part else "") + "; equal axes)",
+    ax.set_title(f"{run.scene}: contact pressure ({m.model}" + (f", {part}" if part else "") + f"; {scale})",
                  fontsize=9)
     return save_figure(fig, path)
 
@@ -158,12 +182,12 @@ def adhesion_map(run: RunResult, path: Path) -> str | None:
         return None
     x, y = m.fields["map_x"], m.fields["map_y"]
     state = np.where(m.fields["pressure_map"] > 0, 1.0 + m.fields["adhesion_map"], 0.0)   # 0 out, 1 slip, 2 stick
-    fig, ax = _map_figure(x, y)
+    fig, ax, scale = _map_figure(x, y)
     cmap = matplotlib.colors.ListedColormap(["white", "tab:orange", "tab:blue"])
     ax.pcolormesh(y * 1e3, x * 1e3, state, shading="nearest", cmap=cmap, vmin=-0.5, vmax=2.5)
     ax.set_xlabel("y (mm)")
     ax.set_ylabel("x, rolling direction (mm)")
-    ax.set_title(f"{run.scene}: adhesion (blue) and slip (orange) areas ({m.model}; equal axes)", fontsize=9)
+    ax.set_title(f"{run.scene}: adhesion (blue) and slip (orange) areas ({m.model}; {scale})", fontsize=9)
     return save_figure(fig, path)
 
 

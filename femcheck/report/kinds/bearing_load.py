@@ -155,11 +155,5 @@ def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
     for t in (_load_table(run), _table3(run)):
         if t is not None:
             out.tables.append(t)
-    m = run.models.get("fem")
-    if m is not None and m.status == "ok" and "certificates" in m.stats:
-        rows = [[k, v.get("value"), v.get("finest"), v.get("order"), v.get("error_estimate"), v.get("certified"),
-                 v.get("note")] for k, v in m.stats["certificates"].items()]
-        out.tables.append(Table("FE convergence certificates", ["quantity", "value", "finest", "order",
-                                                                "error estimate", "certified", "note"], rows,
-                                "Levels h_c = b/4 ... with ratio sqrt 2 (stats.levels); error estimates relative."))
+    # the FE's certificates are in the report's generic FE table (not repeated here)
     return out
