@@ -78,3 +78,44 @@ def test_condensed_width_revision_against_the_fe_ring(ring):
         assert np.abs(np.diag(rev) - np.diag(Cb)).max() < 0.02 * abs(step), f
         off = ~np.eye(z, dtype=bool)
         assert np.abs(rev[off] - Cb[off]).max() < 0.01 * np.abs(Cb[off]).max()
+
+
+# the modules a kind's reference model imports only when it runs (inside the model function), besides the kind
+LAZY = {"ehl_contact": ("femcheck.ehl.adapter",), "srb_rolling": ("femcheck.fem.srb_rolling",
+                                                                   "femcheck.cect.roller_equilibrium"),
+        "bearing_load": ("femcheck.bem.bearing_condensed", "femcheck.fem.bearing2d")}
+
+
+def test_reference_keys_cover_every_module_the_model_imports():
+    """A stored reference is keyed on the source of every femcheck module its model runs
+    (:func:`femcheck.provenance.code_digest` over :func:`femcheck.provenance.closure`, which reads the imports from
+    the source). Independent value: the modules Python actually loads - ``sys.modules`` of a fresh interpreter
+    after importing the kind's module and the model modules it imports lazily - must all be in the closure
+    (``import femcheck`` alone loads nothing else). A closure that missed ``from package import module`` imports
+    (``from . import groups, model`` in the EHL adapter) would leave the EHL references' keys blind to the whole
+    solver: a changed solver would still be served its stale stored results."""
+    import json
+    import subprocess
+    import sys
+
+    from femcheck import provenance
+    from femcheck.problems import KINDS, problem
+    from femcheck.runner import model_modules
+
+    code = ("import sys, json, importlib\nfor m in sys.argv[1:]: importlib.import_module(m)\n"
+            "print(json.dumps(sorted(m for m in sys.modules if m.startswith('femcheck.'))))")
+    jobs = []
+    for kind in sorted(KINDS):
+        prob = problem(kind)
+        for name, dep in prob.DEPENDS.items():
+            if dep.get("reference"):
+                roots = model_modules(type("S", (), {"kind": kind})(), name)
+                jobs.append((kind, name, roots, subprocess.Popen([sys.executable, "-c", code, *roots,
+                                                                   *LAZY.get(kind, ())], stdout=subprocess.PIPE,
+                                                                  text=True)))
+    for kind, name, roots, proc in jobs:
+        out, _ = proc.communicate()
+        assert proc.returncode == 0
+        missing = set(json.loads(out)) - set(provenance.closure(roots))
+        assert not missing, f"{kind} {name}: the reference key misses {sorted(missing)}"
+    assert len(jobs) >= 10

@@ -115,7 +115,10 @@ def apply(copy: Path, m: dict) -> str | None:
 FAILED = re.compile(r"^(FAILED|ERROR) (\S+)(?: - (.*))?$", re.M)
 
 
-def run_tests(copy: Path, tests: list[str], timeout: float) -> dict:
+LOCK: list[str] = []       # ["flock", PATH] with --lock: each test run takes the machine's CPU lock
+
+
+def run_tests(copy: Path, tests: list[str], timeout: float, marker: str = "not slow") -> dict:
     env = dict(os.environ)
     env["PYTHONPATH"] = str(copy) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
     env["FEMCHECK_CACHE"] = tempfile.mkdtemp(prefix="cache-", dir=copy)
@@ -128,17 +131,21 @@ def run_tests(copy: Path, tests: list[str], timeout: float) -> dict:
     if probe.returncode or not Path(where).resolve().is_relative_to(copy.resolve()):
         return {"outcome": "error", "detail": f"femcheck imported from {where or probe.stderr.strip()[-300:]}, "
                                               f"not from the scratch copy", "time_s": 0.0}
-    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-o", "addopts=-rfE", *tests]
+    cmd = [*LOCK, sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-o", "addopts=-rfE",
+           *(["-m", marker] if marker else []), *tests]
     t0 = time.perf_counter()
     try:
         p = subprocess.run(cmd, cwd=copy, env=env, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return {"outcome": "timeout", "detail": f"no result within {timeout:g} s", "time_s": timeout}
-    dt = time.perf_counter() - t0
     out = p.stdout + p.stderr
+    took = re.findall(r" in (\d+(?:\.\d+)?)s", out)
+    dt = float(took[-1]) if took else time.perf_counter() - t0     # pytest's own time: no lock wait in it
     tail = " | ".join(line for line in out.strip().splitlines()[-3:])
     if p.returncode == 0:
         return {"outcome": "passed", "detail": tail[-300:], "time_s": dt}
+    if p.returncode == 5:
+        return {"outcome": "error", "detail": "no test selected (check the node ids and the marker)", "time_s": dt}
     if p.returncode == 1:
         hit = FAILED.search(out)
         node, msg = (hit.group(2), (hit.group(3) or "").strip()) if hit else ("?", tail)
@@ -149,14 +156,14 @@ def run_tests(copy: Path, tests: list[str], timeout: float) -> dict:
 class Baselines:
     """Unmutated runs per distinct test set (computed once, shared between threads)."""
 
-    def __init__(self, base: Path, timeout: float):
-        self.base, self.timeout = base, timeout
+    def __init__(self, base: Path, timeout: float, marker: str):
+        self.base, self.timeout, self.marker = base, timeout, marker
         self.lock = threading.Lock()
         self.done: dict[tuple, dict] = {}
         self.events: dict[tuple, threading.Event] = {}
 
-    def get(self, tests: list[str]) -> dict:
-        key = tuple(tests)
+    def get(self, tests: list[str], marker: str) -> dict:
+        key = (marker, *tests)
         with self.lock:
             ev = self.events.get(key)
             owner = ev is None
@@ -167,7 +174,7 @@ class Baselines:
             shutil.rmtree(work)
             shutil.copytree(self.base, work, symlinks=True)
             try:
-                self.done[key] = run_tests(work, tests, self.timeout)
+                self.done[key] = run_tests(work, tests, self.timeout, marker)
             finally:
                 shutil.rmtree(work, ignore_errors=True)
                 ev.set()
@@ -175,12 +182,13 @@ class Baselines:
         return self.done[key]
 
 
-def one(m: dict, base: Path, baselines: Baselines | None, timeout: float, keep: bool) -> dict:
+def one(m: dict, base: Path, baselines: Baselines | None, timeout: float, keep: bool, marker: str) -> dict:
     t0 = time.perf_counter()
     rec = {"id": m["id"], "file": m["file"], "tests": m["tests"], "when": datetime.datetime.now().isoformat(
         timespec="seconds")}
+    marker = m.get("marker", marker)
     if baselines is not None:
-        b = baselines.get(m["tests"])
+        b = baselines.get(m["tests"], marker)
         if b["outcome"] != "passed":
             rec.update(outcome="baseline-fails", detail=f"unmutated: {b['outcome']} {b.get('test', '')} "
                                                         f"{b.get('detail', '')}"[:400], time_s=0.0)
@@ -194,7 +202,7 @@ def one(m: dict, base: Path, baselines: Baselines | None, timeout: float, keep: 
         if why is not None:
             rec.update(outcome="pattern-error", detail=why, time_s=0.0)
             return rec
-        r = run_tests(work, m["tests"], timeout)
+        r = run_tests(work, m["tests"], timeout, marker)
         outcome = {"failed": "caught", "passed": "survived"}.get(r["outcome"], r["outcome"])
         rec.update(outcome=outcome, test=r.get("test"), detail=r.get("detail", ""), time_s=round(r["time_s"], 1))
         return rec
@@ -256,11 +264,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--timeout", type=float, default=1800.0, help="seconds per test run")
     ap.add_argument("--no-baseline", action="store_true", help="do not run the tests unmutated first")
+    ap.add_argument("--marker", default="not slow",
+                    help="pytest -m expression for every run (default 'not slow'; a mutation's 'marker' overrides it)")
     ap.add_argument("--keep", action="store_true", help="keep the scratch copies (paths in results.json)")
+    ap.add_argument("--lock", type=Path, default=None,
+                    help="take this flock(1) lock file around each test run (a shared machine's CPU lock)")
     ap.add_argument("--scratch", type=Path, default=None, help="parent folder of the scratch copies")
     ap.add_argument("--out", type=Path, default=HERE, help="folder of results.json and RESULTS.md")
     args = ap.parse_args(argv)
     muts = load_mutations(args.mutations)
+    if args.lock is not None:
+        LOCK[:] = ["flock", str(args.lock)]
     if args.list:
         for m in muts:
             print(f"{m['id']:40s} {m['file']}  ->  {' '.join(m['tests'])}")
@@ -291,14 +305,14 @@ def main(argv: list[str] | None = None) -> int:
     root = Path(tempfile.mkdtemp(prefix="femcheck-mutations-", dir=args.scratch))
     base = root / "base"
     snapshot(repo, base)
-    baselines = None if args.no_baseline else Baselines(base, args.timeout)
+    baselines = None if args.no_baseline else Baselines(base, args.timeout, args.marker)
     json_path, md_path = args.out / "results.json", args.out / "RESULTS.md"
     results = json.loads(json_path.read_text()) if json_path.is_file() else {}
     lock = threading.Lock()
     print(f"{len(chosen)} mutation(s), scratch {root}, HEAD {commit} + working tree", flush=True)
     try:
         with cf.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-            futs = {pool.submit(one, m, base, baselines, args.timeout, args.keep): m for m in chosen}
+            futs = {pool.submit(one, m, base, baselines, args.timeout, args.keep, args.marker): m for m in chosen}
             for f in cf.as_completed(futs):
                 rec = f.result()
                 rec["commit"] = commit
