@@ -11,8 +11,8 @@ scaled residual and load error, every solve and every time step). Cases (M, L): 
 
 - ``steady``: the smooth contact on ``--grid``;
 - ``phi1``: the indent Phi = 1, D/Phi = 1/4, K = 4 (the one that made the 257^2 transient relaxation diverge at
-  M = 50 and 100 before the transient under-relaxation of ``femcheck/ehl/relax.py``) marched from the inlet to
-  X_D = 0 on ``--grid`` (with ``--fine-cases``: only for those cases, the others on ``--coarse-grid``, to keep
+  M = 50 and 100 before the transient under-relaxation of ``femcheck/ehl/relax.py``) marched from the inlet
+  through the centre and out through the exit (the full crossing, every step's film checked) on ``--grid`` (with ``--fine-cases``: only for those cases, the others on ``--coarse-grid``, to keep
   the lock time down);
 - ``scene``: ehl-indent's indent (Phi = 0.5, D/Phi = 0.5, K = 4) on ``--scene-grid`` (cheaper).
 
@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import time
 from pathlib import Path
 
@@ -74,7 +75,7 @@ def run_transient(M: float, L: float, grid: int, indent: dict) -> dict:
         return failed(e, t0, grid)
     hist, sm = c["history"], c["smooth"]
     q = model.film_quantities(s, sm)
-    amp = c["amplitudes"]["amplitude"][-1]
+    amp = c["amplitudes"]["amplitude"][c["centre_step"] - 1]
     return {"status": "converged", "grid": grid, "time_s": time.perf_counter() - t0, "steps": c["steps"],
             "levels": s.levels, "cycles_per_step": float(np.mean(hist.cycles)), "max_cycles": int(max(hist.cycles)),
             "residual_max": float(max(hist.residual)), "load_error_max": float(max(hist.load_error)),
@@ -85,9 +86,11 @@ def run_transient(M: float, L: float, grid: int, indent: dict) -> dict:
 def cell(r: dict, transient: bool) -> str:
     g = f"{r['grid']}^2: " if transient else ""
     if r["status"] != "converged" and "negative film" in r["message"]:
-        # every step converged; the film at X_D = 0 is negative in the contact: refused as under-resolved
+        # the steps converged; the film of one of them is negative in the contact: refused as under-resolved
         hmin = r["message"].split("H_min = ")[1].split(" ")[0]
-        return g + f"refused at X_D = 0: negative film H_min = {hmin} (grid too coarse), {r['time_s']:.0f} s"
+        at = re.search(r"step (\d+) of (\d+) \(T = [^,]*, indent centre X_D = (\S+) b\)", r["message"])
+        where = f"step {at[1]} of {at[2]}, X_D = {at[3]} b" if at else "in the steady solution"
+        return g + f"refused at {where}: negative film H_min = {hmin} (grid too coarse), {r['time_s']:.0f} s"
     if r["status"] != "converged":
         return g + f"ConvergenceError ({r['iterations']} it, res {r['residual']:.2g}), {r['time_s']:.0f} s"
     if not transient:

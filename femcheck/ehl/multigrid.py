@@ -177,7 +177,10 @@ class Multigrid:
         """Mean and max of the scaled residual |f - L(P)|/d over the pressurised interior nodes, d the diagonal
         of the point Jacobian (sum of the four face coefficients + the local elastic wedge term): the pressure
         change a point relaxation would still make, comparable between the Poiseuille-dominated inlet (d ~ 1e6)
-        and the elastic contact (d ~ 1)."""
+        and the elastic contact (d ~ 1). NaN when P is not finite everywhere (a diverged iteration)."""
+        if not np.isfinite(lv.P).all():
+            # NaN nodes are not "P > 0": without this a wholly non-finite P read as a zero residual
+            return float("nan"), float("nan")
         H, rho, eps, r = self.state(lv)
         res = (lv.f - operator(lv.P, eps, r, lv.r1, lv.r2, lv.h, lv.ht))[1:-1, 1:-1]
         wX, wD, wT = time_weights(lv.h, lv.ht)

@@ -13,13 +13,15 @@ from typing import Callable
 
 import numpy as np
 
+from . import failures
 from .multigrid import Multigrid, inject
 from .steady import Solution, converge
 
 
 @dataclass
 class History:
-    """Per-step record: time T, indent centre X_D, H0, cycles, residual, load error, and the snapshots kept."""
+    """Per-step record: time T, indent centre X_D, H0, cycles, residual, load error, the film minimum over the
+    pressurised nodes ``h_min``, and the snapshots kept (with the step number of each in ``kept_steps``)."""
 
     T: list[float] = field(default_factory=list)
     x_indent: list[float] = field(default_factory=list)
@@ -28,7 +30,9 @@ class History:
     residual: list[float] = field(default_factory=list)
     load_error: list[float] = field(default_factory=list)
     p_max: list[float] = field(default_factory=list)
+    h_min: list[float] = field(default_factory=list)
     snapshots: list[Solution] = field(default_factory=list)
+    kept_steps: list[int] = field(default_factory=list)
 
 
 def start(mg: Multigrid, ht: float | None = None) -> float:
@@ -65,19 +69,32 @@ def shift_x(F: np.ndarray, s: float) -> np.ndarray:
     return out
 
 
+def step_name(mg: Multigrid, k: int, steps: int) -> str:
+    """Where a time step is, for its failure messages: grid, step k of ``steps``, T and the indent centre."""
+    where = f"EHL transient ({mg.fine.n + 1}^2 nodes), step {k} of {steps} (T = {mg.T:.4g}"
+    if mg.prob.indent is not None:
+        where += f", indent centre X_D = {mg.prob.indent.centre(mg.T):.4g} b"
+    return where + ")"
+
+
 def march(mg: Multigrid, steps: int, tol: float = 1e-7, load_tol: float = 1e-7, max_cycles: int = 40,
           keep: Callable[[int, float], bool] | None = None, progress=None,
-          base: np.ndarray | None = None) -> History:
+          base: np.ndarray | None = None, film_check: bool = True) -> History:
     """March ``steps`` time steps of size hT (set by :func:`start`). ``keep(k, T)`` says which steps to store as
     :class:`Solution` snapshots (pressure and film fields).
 
     First guess of each step: with ``base`` (the smooth steady pressure), the previous disturbance P - base moved
     with the indent by u_D hT (the pressure disturbance of an indent travels with it); otherwise the linear
-    extrapolation in time of P. H0 is extrapolated linearly."""
+    extrapolation in time of P. H0 is extrapolated linearly.
+
+    ``film_check``: every converged step is refused (:class:`~femcheck.ehl.failures.UnderResolvedFilm`, naming
+    the step and the indent position) when its film is negative where P > 0, as a steady solution is: each step's
+    pressure may be used (kept snapshots, amplitudes, a fatigue-life pass), not only the one at the end."""
     lv = mg.fine
     ht = lv.ht
     hist = History()
     prev = None
+    last = None
     for k in range(1, steps + 1):
         t0 = time.perf_counter()
         r = mg.state(lv)[3]
@@ -94,8 +111,14 @@ def march(mg: Multigrid, steps: int, tol: float = 1e-7, load_tol: float = 1e-7, 
         if prev is not None:
             mg.H0 = 2.0 * now[1] - prev[1]
         prev = now
-        cycles, h = converge(mg, tol, load_tol, max_cycles, f"EHL transient step {k} (T = {mg.T:.4g})")
+        where = step_name(mg, k, steps)
+        cycles, h = converge(mg, tol, load_tol, max_cycles, where, before=last)
         res, res_max = mg.residual_norm(lv)
+        last = (res, f"at the end of step {k}")
+        H = mg.state(lv)[0]
+        h_min = failures.film_minimum(lv.P, H)
+        if film_check:
+            failures.check_film(lv.P, H, where, cycles, res, tol)
         hist.T.append(mg.T)
         hist.x_indent.append(mg.prob.indent.centre(mg.T) if mg.prob.indent is not None else np.nan)
         hist.H0.append(mg.H0)
@@ -103,10 +126,12 @@ def march(mg: Multigrid, steps: int, tol: float = 1e-7, load_tol: float = 1e-7, 
         hist.residual.append(res)
         hist.load_error.append(mg.load_error())
         hist.p_max.append(float(lv.P.max()))
+        hist.h_min.append(h_min)
         if keep is not None and keep(k, mg.T):
-            hist.snapshots.append(Solution(lv.film.x.copy(), lv.film.y.copy(), lv.P.copy(), mg.state(lv)[0], mg.H0,
+            hist.snapshots.append(Solution(lv.film.x.copy(), lv.film.y.copy(), lv.P.copy(), H, mg.H0,
                                            mg.T, cycles, res, res_max, mg.load_error(), h, mg.sweeps,
                                            time.perf_counter() - t0))
+            hist.kept_steps.append(k)
         if progress:
             progress(f"step {k}/{steps} T={mg.T:.3f} cycles={cycles}")
     return hist

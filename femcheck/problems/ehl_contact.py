@@ -5,7 +5,8 @@ Inputs: physical (``geometry.Rx``, ``geometry.Ry``, ``load.normal``, materials, 
 ``kinematics.mean_speed``) or the Moes groups ``ehl.M``, ``ehl.L``, which then replace the speed and the load
 (the radii, the moduli and the lubricant stay). With ``indent.*`` keys the indent (seed 004 eq 2.16; Phi in the
 Hertz semi-axis b along the rolling direction, D/Phi with D in b^2/Rx, decay K) enters at the inlet and is
-marched with the surface at u_D = u_m (1 + slide_roll) to the centre of the contact.
+marched with the surface at u_D = u_m (1 + slide_roll) through the centre of the contact, where the additional
+pressures are taken, and out through the exit (X_D = 1 + 1.5 Phi; :func:`femcheck.ehl.model.crossing_steps`).
 
 Models: ``ehl`` (FAS/FMG multigrid, NU2 transient; :mod:`femcheck.ehl`), ``moes`` (Nijenbanning-Venner-Moes
 central film), ``hamrock_dowson`` (central and minimum film), ``dry`` (half-space BEM: Hertz p_max, and with an
@@ -58,14 +59,16 @@ SCHEMA: dict[str, Key] = {
                          lo_closed=True, hi_closed=True),
     "numerics.levels": Key("int", "-", "multigrid levels (default: coarsest grid of 17^2 nodes)", lo=2, hi=8,
                            lo_closed=True, hi_closed=True),
-    "numerics.refinements": Key("int", "-", "grids solved for the convergence certificate (finest, /2, /4 ...)",
-                                lo=1, hi=4, lo_closed=True, hi_closed=True),
+    "numerics.refinements": Key("int", "-", "grids solved for the convergence certificate (finest, /2, /4 ...; a "
+                                "coarse grid that does not resolve the contact is left out and said so)", lo=1, hi=4,
+                                lo_closed=True, hi_closed=True),
     "numerics.x_start": Key("float", "b", "inlet end of the domain / b", lo=-10.0, hi=-1.5, lo_closed=True,
                             hi_closed=True),
     "numerics.x_end": Key("float", "b", "outlet end of the domain / b (the domain is square)", lo=1.2, hi=4.0,
                           lo_closed=True, hi_closed=True),
-    "numerics.snapshots": Key("int", "-", "pressure fields kept per crossing (evenly spaced steps, the last at X_D = 0)",
-                              lo=1, hi=10000, lo_closed=True, hi_closed=True),
+    "numerics.snapshots": Key("int", "-", "pressure fields kept per crossing (evenly spaced steps over the whole "
+                              "crossing, plus the centred X_D = 0 and the last)", lo=1, hi=10000, lo_closed=True,
+                              hi_closed=True),
     "numerics.tol": Key("float", "-", "mean scaled residual per solve", lo=0.0, hi=1e-4, hi_closed=True),
     "numerics.load_tol": Key("float", "-", "relative load error per solve (and per time step)", lo=0.0,
                              hi=1e-6, hi_closed=True),
