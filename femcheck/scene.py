@@ -197,6 +197,9 @@ class Scene:
     params: dict[str, Any]
     schema: dict[str, Key] = field(repr=False)
     source: str = ""
+    # ``[tolerances.exceptions]``: "model.quantity" -> why that band is deliberately wider than the quantity moves
+    # over the scene's stress sweep (femcheck.band_check); not a parameter, never in a model's key
+    band_exceptions: dict[str, str] = field(default_factory=dict)
 
     def __getitem__(self, key: str) -> Any:
         return self.params[key]
@@ -222,7 +225,9 @@ class Scene:
         """A new validated scene; an override of ``None`` removes the key (e.g. radius -> Rx, Ry), and setting
         one key of a group of alternatives (the kind's ``ALTERNATIVES``) removes the others."""
         merged = _apply_overrides(self.kind, self.params, overrides)
-        return build_scene(self.name, self.kind, self.description, self.tags, merged, self.source)
+        # an exception follows its band; a band removed by the overrides takes its exception with it
+        kept = {k: v for k, v in self.band_exceptions.items() if f"tolerances.{k}" in merged}
+        return build_scene(self.name, self.kind, self.description, self.tags, merged, self.source, kept)
 
 
 def _apply_overrides(kind: str, params: dict[str, Any], overrides: dict[str, Any]) -> dict[str, Any]:
@@ -275,8 +280,9 @@ def lookup_key(schema: dict[str, Key], key: str) -> Key | None:
 
 
 def build_scene(name: str, kind: str, description: str, tags: list[str], raw: dict[str, Any],
-                source: str = "") -> Scene:
-    """Type- and range-check every key against the kind's schema, then the kind's cross-key checks."""
+                source: str = "", band_exceptions: dict[str, str] | None = None) -> Scene:
+    """Type- and range-check every key against the kind's schema, then the kind's cross-key checks; each band
+    exception must name a tolerance of the scene and say why."""
     from .problems import problem
 
     prob = problem(kind)
@@ -298,7 +304,17 @@ def build_scene(name: str, kind: str, description: str, tags: list[str], raw: di
     if missing:
         raise InputError(missing[0], "required key is missing")
     prob.validate(params)
-    return Scene(name, kind, description, list(tags), params, schema, source)
+    exceptions = dict(band_exceptions or {})
+    for key, why in exceptions.items():
+        where = f"tolerances.exceptions.{key}"
+        if f"tolerances.{key}" not in params:
+            given = [k.split(".", 1)[1] for k in params if k.startswith("tolerances.")]
+            raise InputError(where, f"names no tolerance of this scene{did_you_mean(key, given)}; an exception "
+                                    "explains a band the scene gives (\"model.quantity\" = \"why\")")
+        if not isinstance(why, str) or not why.strip():
+            raise InputError(where, "must be a non-empty string saying why the band is wider than the quantity "
+                                    "moves over the scene's stress sweep")
+    return Scene(name, kind, description, list(tags), params, schema, source, exceptions)
 
 
 def _check_models(params: dict[str, Any], names: tuple[str, ...]) -> None:
@@ -345,6 +361,10 @@ def load_scene(scene: str | Path, overrides: dict[str, Any] | None = None) -> Sc
     meta = {k: data.pop(k) for k in ("name", "kind", "description", "tags") if k in data}
     if "kind" not in meta:
         raise InputError("kind", f"{path}: a scene needs a top-level kind")
+    tolerances = data.get("tolerances")
+    exceptions = tolerances.pop("exceptions", {}) if isinstance(tolerances, dict) else {}
+    if not isinstance(exceptions, dict):
+        raise InputError("tolerances.exceptions", 'must be a table of "model.quantity" = "why"')
     raw = _apply_overrides(str(meta["kind"]), _flatten(data), overrides or {})
     return build_scene(str(meta.get("name", path.stem)), str(meta["kind"]), str(meta.get("description", "")),
-                       list(meta.get("tags", [])), raw, str(path))
+                       list(meta.get("tags", [])), raw, str(path), exceptions)
