@@ -36,3 +36,9 @@ def test_indent_section_has_history_and_dry_table(tmp_path):
     # kept steps over the whole crossing, the centred one (X_D = 0) among them
     assert f["pressure_steps"].shape[1:] == (65, 65) and np.abs(f["steps_x_indent"]).min() < 1e-15
     assert f["history_x_indent"][-1] >= (1.0 + 1.5 * 1.0) * r.models["ehl"].stats["b"] * (1 - 1e-12)
+    # the reported amplitudes are the centred ones (X_D = 0), not those of the last step
+    i0 = int(np.argmin(np.abs(f["history_x_indent"])))
+    q = r.models["ehl"].quantities
+    assert f["history_x_indent"][i0] == pytest.approx(0.0, abs=1e-15) and i0 + 1 == r.models["ehl"].stats["centre_step"]
+    assert all(q[f"additional_pressure_{k}"] == f[f"history_dp_{k}"][i0] for k in ("rear", "front", "lateral", "centre"))
+    assert q["additional_pressure_centre"] < 0 < q["additional_pressure_rear"]
