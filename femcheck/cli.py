@@ -249,17 +249,17 @@ def suite(name: str = typer.Argument(..., help="suite tag, e.g. quick"),
           rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results")) -> None:
     """Run every scene tagged NAME and write DIR/index.html and DIR/summary.json. FEM references are taken
     from references/ when their provenance matches, else solved and stored there."""
-    from .report.html import write_report
-    from .runner import run
-    from .scene import builtin_scene_files, load_scene
+    from .scene import builtin_tags, did_you_mean, load_scene
 
-    scenes = [s for s in (load_scene(n) for n in builtin_scene_files()) if name in s.tags]
-    if not scenes:
-        from .scene import did_you_mean
-
-        tags = sorted({t for n in builtin_scene_files() for t in load_scene(n).tags})
+    tagged = [n for n, tags in builtin_tags().items() if name in tags]     # no scene built: a bad name fails fast
+    if not tagged:
+        tags = sorted({t for ts in builtin_tags().values() for t in ts})
         raise InputError("suite", f"no scene is tagged {name!r}{did_you_mean(name, tags)}; allowed: "
                                   f"{', '.join(tags)}")
+    from .report.html import write_report
+    from .runner import run
+
+    scenes = [load_scene(n) for n in tagged]
     out = out or Path("reports") / name
     t0 = time.perf_counter()
     runs = []

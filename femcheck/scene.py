@@ -227,23 +227,46 @@ class Scene:
         merged = _apply_overrides(self.kind, self.params, overrides)
         # an exception follows its band; a band removed by the overrides takes its exception with it
         kept = {k: v for k, v in self.band_exceptions.items() if f"tolerances.{k}" in merged}
-        return build_scene(self.name, self.kind, self.description, self.tags, merged, self.source, kept)
+        return build_scene(self.name, self.kind, modified(self.description, overrides), self.tags, merged,
+                           self.source, kept)
 
 
 def _apply_overrides(kind: str, params: dict[str, Any], overrides: dict[str, Any]) -> dict[str, Any]:
-    """``params`` updated with ``overrides``. A kind may declare ``ALTERNATIVES``: groups of keys of which a
-    scene gives one (e.g. ``layer.thickness`` or ``layer.h_over_a``); overriding one member drops the members
-    the overrides do not name, so ``--set layer.h_over_a=0.1`` works on a scene written with a thickness."""
+    """``params`` updated with ``overrides``. A kind may declare ``ALTERNATIVES``: groups of options of which a
+    scene gives one, an option being a key or a tuple of keys given together (``layer.thickness`` or
+    ``layer.h_over_a``; the load and speed or the Moes groups ``ehl.M``, ``ehl.L``). Overriding a key of one
+    option drops the keys of the other options that the overrides do not name: the input given last wins, so
+    ``--set layer.h_over_a=0.1`` works on a scene written with a thickness, and ``--set load.normal=...`` on a scene
+    written with Moes groups is never silently replaced by them."""
     from .problems import problem
 
     merged = dict(params)
     for group in getattr(problem(kind), "ALTERNATIVES", ()):
-        if any(k in overrides for k in group):
-            for k in group:
-                if k not in overrides:
-                    merged.pop(k, None)
+        options = [(o,) if isinstance(o, str) else tuple(o) for o in group]
+        for i, option in enumerate(options):
+            if any(k in overrides for k in option):
+                for other in options[:i] + options[i + 1:]:
+                    for k in other:
+                        if k not in overrides:
+                            merged.pop(k, None)
     merged.update(overrides)
     return {k: v for k, v in merged.items() if v is not None}
+
+
+MODIFIED = "Modified by "
+
+
+def modified(description: str, overrides: dict[str, Any]) -> str:
+    """``description`` headed by the overrides that change the physics (not the choice of models), so that a
+    scene run with ``--set`` never shows the shipped text as if its numbers still held."""
+    physics = {k: v for k, v in overrides.items() if not k.startswith(("models.", "tolerances."))}
+    if not physics:
+        return description
+    head = ", ".join(f"{k} = {'(removed)' if v is None else v}" for k, v in physics.items())
+    if description.startswith(MODIFIED):           # a second round of overrides: one heading
+        description = description.partition("\n")[2]
+    return f"{MODIFIED}{head}: the description below is of the scene as written; its numbers may not hold.\n" \
+        + description
 
 
 def _flatten(d: dict, prefix: str = "") -> dict[str, Any]:
@@ -352,6 +375,8 @@ def load_scene(scene: str | Path, overrides: dict[str, Any] | None = None) -> Sc
     files = builtin_scene_files()
     path = files.get(str(scene)) or Path(scene)
     if not path.is_file():
+        if isinstance(scene, Path) or "/" in str(scene) or str(scene).endswith(".toml"):
+            raise InputError("scene", f"no such file: {scene}")
         raise InputError("scene", f"{scene!r} is neither a built-in scene{did_you_mean(str(scene), files)} "
                                   f"nor a TOML file; allowed: {', '.join(sorted(files))} or a path")
     try:
@@ -365,6 +390,34 @@ def load_scene(scene: str | Path, overrides: dict[str, Any] | None = None) -> Sc
     exceptions = tolerances.pop("exceptions", {}) if isinstance(tolerances, dict) else {}
     if not isinstance(exceptions, dict):
         raise InputError("tolerances.exceptions", 'must be a table of "model.quantity" = "why"')
-    raw = _apply_overrides(str(meta["kind"]), _flatten(data), overrides or {})
-    return build_scene(str(meta.get("name", path.stem)), str(meta["kind"]), str(meta.get("description", "")),
-                       list(meta.get("tags", [])), raw, str(path), exceptions)
+    written = _flatten(data)
+    _refuse_quoted_numbers(str(meta["kind"]), written, path)
+    raw = _apply_overrides(str(meta["kind"]), written, overrides or {})
+    return build_scene(str(meta.get("name", path.stem)), str(meta["kind"]),
+                       modified(str(meta.get("description", "")), overrides or {}), list(meta.get("tags", [])), raw,
+                       str(path), exceptions)
+
+
+def _refuse_quoted_numbers(kind: str, written: dict[str, Any], path: Path) -> None:
+    """A number or a truth value written as a string in a scene file (``normal = "1000"``) is an error, not
+    converted: in TOML a quoted value is text (``--set`` values are text by nature and are converted)."""
+    from .problems import problem
+
+    schema = problem(kind).SCHEMA
+    for key, value in written.items():
+        spec = lookup_key(schema, key)
+        if spec is not None and spec.kind in ("float", "int", "bool") and isinstance(value, str):
+            raise InputError(key, f"{value!r} is a string in {path.name}; allowed: {spec.allowed()}, written "
+                                  "without quotes")
+
+
+def builtin_tags() -> dict[str, list[str]]:
+    """Scene name -> its tags, read from the built-in scene files without building the scenes (fast: for
+    listing suites and refusing an unknown one)."""
+    out = {}
+    for name, path in builtin_scene_files().items():
+        try:
+            out[name] = list(tomllib.loads(path.read_text()).get("tags", []))
+        except tomllib.TOMLDecodeError:
+            out[name] = []
+    return out

@@ -24,6 +24,8 @@ from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, materia
 from . import _life_output as life_output
 
 MODEL_NAMES = ("analytic", "bem", "fem")
+# a sphere radius or the two radii of curvature: the one given last (an override) wins
+ALTERNATIVES = (("geometry.radius", ("geometry.Rx", "geometry.Ry")),)
 MAX_A_OVER_R = 0.1
 
 SCHEMA: dict[str, Key] = {

@@ -36,6 +36,8 @@ from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("exact", "analytic", "linear", "fastsim", "full_slip", "strip")
+# a sphere radius or the two radii of curvature: the one given last (an override) wins
+ALTERNATIVES = (("geometry.radius", ("geometry.Rx", "geometry.Ry")),)
 DESIGN_QUANTITIES = ("creep_force_x", "creep_force_y", "shift", "spin_moment", "p_max")
 ROLLING_ONLY = ("linear", "fastsim", "full_slip", "strip")
 # what `femcheck stress` judges against the reference (where the scene sets a tolerance)
