@@ -285,6 +285,7 @@ def check_scene(scene: Scene | str, fraction: float = FRACTION, workers: int | N
 
 def save_sweep(sw: Sweep, path) -> None:
     """Write a sweep as JSON (temp file and rename: never half-written), with how to run it again."""
+    import datetime
     import json
     import os
     import tempfile
@@ -295,6 +296,7 @@ def save_sweep(sw: Sweep, path) -> None:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     d = {**sw.to_json(), "femcheck_version": __version__,
+         "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
          "command": f"python -m femcheck.band_check --store {path.parent} {sw.scene}"}
     fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
     with os.fdopen(fd, "w") as fh:

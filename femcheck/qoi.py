@@ -1,7 +1,7 @@
 """Quantities of interest extracted from pressure samples: contact edges and peak pressures (shared by every model).
 
 The estimators do not take their shape from Hertz. They assume only what holds near any contact edge and any
-smooth maximum (issue 12, finding 2):
+smooth maximum:
 
 * :func:`edge` — near a contact edge the pressure follows a power law of the distance to it,
   p ~ c (a^2 - d^2)^alpha (d the distance from the contact centre), with alpha found from the data: 1/2 for an
@@ -9,11 +9,14 @@ smooth maximum (issue 12, finding 2):
   Johnson 1985 §5.9), 2 for a thin incompressible one (squeeze film), -1/2 at the sharp edge of a flat punch
   (Johnson eq. 2.64). The fit uses only the samples within ``band`` of the edge (1D profiles: the outer 20 % of
   the contact; 2D fields, :func:`semi_axes`: the outer half, in strips along the axes, to average the P1 nodal
-  scatter of 3D FE). Where the exponent itself varies across the band (a layer of thickness ~ the band: the
-  local exponent goes from 1 to 1/2 within ~h of the edge) the result is the band's power-law extrapolation: on
-  layer-rigid (h/a = 0.09) it lies 0.2 % from Johnson's thin-layer edge and up to 1 % beyond where a band of
-  5 % puts it. Every model of a scene uses the same estimator, so their comparison is like with like;
-  ``misfit`` says how well the power law holds.
+  scatter of 3D FE). Where the exponent itself varies across the band the band is narrowed, halving while the
+  exponent fitted on its outer half drifts (beyond ``DRIFT_FLOOR`` and the fit's noise), down to ``MIN_DEPTH``
+  sample distances. A layer of thickness h on a stiff base is the case in point: its pressure falls nearly
+  linearly and turns into the square-root edge of any smooth elastic contact only within ~h of the edge; a band
+  wider than that extrapolates past the edge (+1.4 % at h/a = 0.1, whatever the grid). With the narrowing the
+  edge converges to the transform solution of the layer (docs/notes/layered-edge.md); on Hertz fields nothing
+  drifts and the band asked for is kept. ``misfit`` says how well the power law holds; ``bias`` bounds what a
+  remaining drift leaves.
 * :func:`centre_value`, :func:`centre_value_2d` and :func:`peak` — a smooth maximum (or the value at a centre of
   symmetry) is the constant term of a local even quartic fitted over a window of half the contact size: exact
   for a parabolic field (thin layer), 3e-5 for Hertz, 2e-4 for the flat punch's centre (measured, see
@@ -42,7 +45,13 @@ class Edge:
     largest pressure), ``singular`` (alpha < 0: the pressure is unbounded at the edge), ``points`` used,
     ``fitted`` (False when no power law could be fitted: the position is then the midpoint between the last
     loaded and the first unloaded sample), ``std`` (m): the standard error of ``position`` from the scatter of
-    the samples about the fit (nonlinear least squares, exponent included; :func:`edge_std`)."""
+    the samples about the fit (nonlinear least squares, exponent included; :func:`edge_std`).
+
+    Band adaptation (:func:`edge`): ``band`` the band finally fitted (fraction of the outermost loaded distance),
+    ``drift`` the change of the fitted exponent across the halvings that narrowed it (0 when the power law held
+    over the band asked for), ``bias`` (m) a bound on what the exponent's drift still leaves in ``position``: the
+    change of the edge between the last two bands (0 when not narrowed); ``bracket`` (m) the last loaded and the
+    first unloaded sample distances (the count estimate is their midpoint, within half their gap)."""
 
     position: float
     exponent: float
@@ -51,6 +60,20 @@ class Edge:
     points: int
     fitted: bool = True
     std: float = float("nan")
+    band: float = float("nan")
+    drift: float = 0.0
+    bias: float = 0.0
+    bracket: tuple[float, float] = (float("nan"), float("nan"))
+
+    @property
+    def count_position(self) -> float:
+        """Midpoint (m) between the last loaded and the first unloaded sample."""
+        return 0.5 * (self.bracket[0] + self.bracket[1])
+
+    @property
+    def count_std(self) -> float:
+        """Half the gap (m) between the last loaded and the first unloaded sample: the count's uncertainty."""
+        return 0.5 * (self.bracket[1] - self.bracket[0])
 
 
 @dataclass(frozen=True)
@@ -106,8 +129,48 @@ def power_law_fit(A: np.ndarray, p: np.ndarray, singular: bool, exponent: float 
     return alpha, coef, m
 
 
+# Band adaptation of :func:`edge`. A change of the fitted exponent between a band and its outer half larger than
+# DRIFT_FLOOR (and than 3 standard errors of the difference) means the power law does not hold across the band:
+# the band is halved. 0.02 is above the exponent's wobble on Hertz fields sampled by the BEM (measured below 0.01
+# at 65-257 cells and 1024 strips, tests/test_qoi.py) and far below the drift across a thin layer's edge boundary
+# layer (0.1-0.3 per halving, docs/notes/layered-edge.md).
+DRIFT_FLOOR = 0.02
+# The narrowest band holds at least this many distinct sample distances (columns of a grid): three parameters
+# (four with the transverse term) and the exponent need them.
+MIN_DEPTH = 5
+
+
+@dataclass(frozen=True)
+class _Fit:
+    position: float
+    alpha: float
+    misfit: float
+    std: float
+    alpha_std: float
+    points: int
+    fitted: bool
+
+
+def _fit_band(d: np.ndarray, p: np.ndarray, y: np.ndarray | None, sel: np.ndarray, dk: float, nxt: float,
+              singular: bool, exponent: float | None) -> _Fit:
+    """The power law of :func:`edge` fitted to the samples ``sel``."""
+    pn = p[sel] / p[sel].max()
+    cols = [np.ones(sel.size), (d[sel] / dk) ** 2 - 1.0]      # scaled: the columns must be of order one
+    if y is not None:
+        cols.append((y[sel] / dk) ** 2)
+    if sel.size < len(cols) + 1:
+        return _Fit(float(0.5 * (dk + nxt)), float("nan"), float("nan"), float("nan"), float("nan"), int(sel.size),
+                    False)
+    A = np.stack(cols, axis=1)
+    alpha, c, mis = power_law_fit(A, pn, singular, exponent)
+    if not (np.isfinite(mis) and c[1] < 0 and 1.0 - c[0] / c[1] > 0):
+        return _Fit(float(0.5 * (dk + nxt)), alpha, float(mis), float("nan"), float("nan"), int(sel.size), False)
+    std, astd = _edge_covariance(A, pn, alpha, c, fit_exponent=exponent is None)
+    return _Fit(float(dk * np.sqrt(1.0 - c[0] / c[1])), alpha, float(mis), dk * std, astd, int(sel.size), True)
+
+
 def edge(d: np.ndarray, p: np.ndarray, band: float = 0.2, min_points: int = 5, transverse: np.ndarray | None = None,
-         exponent: float | None = None) -> Edge:
+         exponent: float | None = None, adapt: bool = True) -> Edge:
     """Contact edge (m, as a distance from the contact centre) from pressure samples ``p`` (Pa) at distances
     ``d`` >= 0 (m) from the centre on one side of it, to sub-sample accuracy, for any power-law edge.
 
@@ -118,6 +181,19 @@ def edge(d: np.ndarray, p: np.ndarray, band: float = 0.2, min_points: int = 5, t
     2D field in a strip along that line; the c2 y^2 term is the local curvature of the field across it).
     The branch is singular (alpha < 0) when the outermost loaded sample carries the band's largest pressure.
     No clipping to the samples: the root is the estimate (a clipped root would freeze the edge on a node).
+
+    Band adaptation (``adapt``, exponent fitted): where the exponent is not constant across the band the
+    power law's extrapolation misses the edge. A thin layer on a stiff base is the case in point: its pressure
+    falls almost linearly (alpha ~ 1) and turns into the square-root edge of any smooth elastic contact only
+    within ~h of the edge, so a band wider than h extrapolates past the edge (+1.4 % on a layer of h/a = 0.1,
+    whatever the grid). The band is therefore halved while the exponent fitted on its outer half differs from the
+    band's by more than ``DRIFT_FLOOR`` and 3 standard errors, down to ``MIN_DEPTH`` distinct sample distances:
+    the band is chosen by the data's own exponent, not by a length the estimator is told. The result reports the
+    band used, the exponent's ``drift`` and a ``bias`` bound (the edge's change over the last halving); as the
+    samples refine the narrowest band shrinks into the boundary layer and the edge converges (measured against the
+    Hankel-transform solution of the layer, :mod:`femcheck.analytic.layer_axisymmetric`: +0.9, +0.2, +0.06 % at
+    65, 129, 257 BEM cells; docs/notes/layered-edge.md). Noisy samples (P1 FE reactions) raise the standard
+    errors, so the band narrows only on a drift the noise cannot explain.
     """
     d = np.abs(np.asarray(d, dtype=float))
     p = np.asarray(p, dtype=float)
@@ -128,32 +204,49 @@ def edge(d: np.ndarray, p: np.ndarray, band: float = 0.2, min_points: int = 5, t
     dk = d[loaded].max()
     beyond = d[(p <= 0) & (d > dk)]
     nxt = beyond.min() if beyond.size else dk
-    sel = loaded[d[loaded] >= (1.0 - band) * dk]
-    if sel.size < min_points:
-        sel = loaded[np.argsort(d[loaded])[-min_points:]]
-    pn = p[sel] / p[sel].max()
-    cols = [np.ones(sel.size), (d[sel] / dk) ** 2 - 1.0]      # scaled: the columns must be of order one
-    if y is not None:
-        cols.append((y[sel] / dk) ** 2)
-    A = np.stack(cols, axis=1)
+    bracket = (float(dk), float(nxt))
+
+    def select(b: float) -> np.ndarray:
+        s = loaded[d[loaded] >= (1.0 - b) * dk]
+        if s.size < min_points:
+            s = loaded[np.argsort(d[loaded])[-min_points:]]
+        return s
+
+    sel = select(band)
     outer = sel[d[sel] >= dk * (1.0 - 1e-12)]
     singular = bool(exponent < 0) if exponent is not None else bool(
         p[outer].max() >= p[sel].max() and sel.size > outer.size
         and p[outer].max() > p[sel][np.argsort(d[sel])][-outer.size - 1])
-    if sel.size < len(cols) + 1:
-        return Edge(float(0.5 * (dk + nxt)), float("nan"), float("nan"), singular, int(sel.size), False)
-    alpha, c, mis = power_law_fit(A, pn, singular, exponent)
-    if not (np.isfinite(mis) and c[1] < 0 and 1.0 - c[0] / c[1] > 0):
-        return Edge(float(0.5 * (dk + nxt)), alpha, float(mis), singular, int(sel.size), False)
-    std = dk * edge_std(A, pn, alpha, c, fit_exponent=exponent is None)
-    return Edge(float(dk * np.sqrt(1.0 - c[0] / c[1])), alpha, float(mis), singular, int(sel.size), std=std)
+    fit = _fit_band(d, p, y, sel, dk, nxt, singular, exponent)
+    used, drift, bias = band, 0.0, 0.0
+    if adapt and exponent is None and fit.fitted:
+        # distinct sample distances from the outermost inwards: the narrowest band keeps MIN_DEPTH of them
+        cols = np.unique(np.round(d[loaded] / dk, 9))[::-1]
+        b_min = (1.0 - cols[MIN_DEPTH - 1]) * (1.0 + 1e-9) if cols.size >= MIN_DEPTH else band
+        b = band
+        while b > b_min * (1.0 + 1e-6):
+            nb = max(0.5 * b, b_min)         # halve; the last step lands on the narrowest band
+            inner = select(nb)
+            if inner.size == sel.size:
+                break
+            half = _fit_band(d, p, y, inner, dk, nxt, singular, None)
+            if not half.fitted:
+                break
+            step = abs(half.alpha - fit.alpha)
+            noise = 3.0 * np.hypot(fit.alpha_std, half.alpha_std)
+            if not (step > DRIFT_FLOOR and step > noise):
+                break
+            drift += step
+            bias = abs(half.position - fit.position)
+            fit, sel, b = half, inner, nb
+        used = b
+    return Edge(fit.position, fit.alpha, fit.misfit, singular, fit.points, fit.fitted, fit.std, float(used),
+                float(drift), float(bias), bracket)
 
 
-def edge_std(A: np.ndarray, p: np.ndarray, alpha: float, c: np.ndarray, fit_exponent: bool = True) -> float:
-    """Standard error of the edge t_e = sqrt(1 - c0/c1) (in units of the scaling length) of the model
-    p = (A c)^alpha: Gauss-Newton covariance s^2 (J^T J)^-1 of the parameters (c, and alpha when it was fitted)
-    from the residuals in p, propagated to t_e. A statistical measure of how well the samples fix the edge
-    (node-to-node scatter of FE reactions), not of the discretisation error."""
+def _edge_covariance(A: np.ndarray, p: np.ndarray, alpha: float, c: np.ndarray, fit_exponent: bool = True
+                     ) -> tuple[float, float]:
+    """(standard error of t_e, standard error of alpha) of the fit p = (A c)^alpha (:func:`edge_std`)."""
     q = A @ c
     ok = q > 0
     n = p.size
@@ -165,17 +258,26 @@ def edge_std(A: np.ndarray, p: np.ndarray, alpha: float, c: np.ndarray, fit_expo
     J = np.hstack(cols)
     dof = n - J.shape[1]
     if dof <= 0:
-        return float("nan")
+        return float("nan"), float("nan")
     s2 = float(np.sum((p - pred) ** 2)) / dof
     try:
         cov = s2 * np.linalg.pinv(J.T @ J)
     except np.linalg.LinAlgError:
-        return float("nan")
+        return float("nan"), float("nan")
     te = np.sqrt(1.0 - c[0] / c[1])
     grad = np.zeros(J.shape[1])
     grad[0] = -0.5 / (te * c[1])                       # d t_e / d c0
     grad[1] = 0.5 * c[0] / (te * c[1] ** 2)            # d t_e / d c1
-    return float(np.sqrt(max(grad @ cov @ grad, 0.0)))
+    astd = float(np.sqrt(max(cov[-1, -1], 0.0))) if fit_exponent else 0.0
+    return float(np.sqrt(max(grad @ cov @ grad, 0.0))), astd
+
+
+def edge_std(A: np.ndarray, p: np.ndarray, alpha: float, c: np.ndarray, fit_exponent: bool = True) -> float:
+    """Standard error of the edge t_e = sqrt(1 - c0/c1) (in units of the scaling length) of the model
+    p = (A c)^alpha: Gauss-Newton covariance s^2 (J^T J)^-1 of the parameters (c, and alpha when it was fitted)
+    from the residuals in p, propagated to t_e. A statistical measure of how well the samples fix the edge
+    (node-to-node scatter of FE reactions), not of the discretisation error."""
+    return _edge_covariance(A, p, alpha, c, fit_exponent)[0]
 
 
 def edges(x: np.ndarray, p: np.ndarray, centre: float = 0.0, **kw) -> tuple[Edge, Edge | None]:

@@ -3,10 +3,10 @@ their quantity moves over the scene's own stress sweep, or the scene states why 
 
 The measure (module doc): e_blind = min_c max_i |c - v_i|/|v_i|, the worst error of the best constant model over the
 sweep's reference values v_i; a band must be below FRACTION e_blind = e_blind/2, which also rejects a model that
-follows half of the quantity's logarithmic response. Cost: the sweeps of 24 scenes run live (about 25 s under
-the CPU lock, 2 workers); indent-life's (about 17 min: its stand-in, the pseudo-transient life BEM, at 13 points)
-and srb-rolling's (about 2 min: the CECT roller equilibrium at 6 points) are stored in tests/data/band_sweeps and
-judged from the file (regenerate: `python -m femcheck.band_check --store tests/data/band_sweeps SCENE`).
+follows half of the quantity's logarithmic response. Cost: the sweeps of 24 scenes run live (about 25 s for the
+file under the CPU lock); indent-life's (101 s: its stand-in, the pseudo-transient life BEM, at 13 points) and
+srb-rolling's (128 s: the CECT roller equilibrium at 6 points) are stored in tests/data/band_sweeps and judged
+from the file (regenerate: `python -m femcheck.band_check --store tests/data/band_sweeps SCENE`).
 """
 from __future__ import annotations
 
