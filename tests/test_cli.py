@@ -36,7 +36,8 @@ def run_json():
 @pytest.mark.slow
 def test_run_json_schema(run_json):
     d = run_json
-    assert set(d) == {"scene", "params", "models", "comparisons"}
+    assert set(d) == {"scene", "params", "models", "comparisons", "verdict"}
+    assert d["verdict"] == "PASS"
     assert d["scene"] == "hertz-line" and d["params"]["load.per_length"] == 1e6
     for name in ("analytic", "bem", "fem"):
         m = d["models"][name]
