@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import ast
 import hashlib
+import io
+import tokenize
 from functools import lru_cache
 from importlib import metadata
 from pathlib import Path
@@ -105,13 +107,53 @@ def library_versions() -> dict[str, str]:
     return out
 
 
+def code_text(source: str) -> str:
+    """The part of a module's source that can change what it computes: the source with its docstrings (module,
+    class and function), comments, trailing blanks and blank lines removed. Keys hash this, so editing
+    documentation does not make stored references stale; a change to any statement, name or literal does.
+    Docstring positions come from :mod:`ast` and comments from :mod:`tokenize`, both stable across Python
+    versions (the text hashed is the source itself, not a version-dependent AST dump)."""
+    lines = source.splitlines()
+    blank: dict[int, list[tuple[int, int]]] = {}        # 0-based line -> character ranges to drop
+
+    def drop(r0: int, c0: int, r1: int, c1: int) -> None:       # 1-based rows, character columns
+        for r in range(r0, r1 + 1):
+            blank.setdefault(r - 1, []).append((c0 if r == r0 else 0, c1 if r == r1 else len(lines[r - 1])))
+
+    def chars(row: int, byte_col: int) -> int:          # ast columns are UTF-8 byte offsets
+        return len(lines[row - 1].encode()[:byte_col].decode(errors="ignore"))
+
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and node.body:
+            d = node.body[0]
+            if isinstance(d, ast.Expr) and isinstance(d.value, ast.Constant) and isinstance(d.value.value, str):
+                drop(d.lineno, chars(d.lineno, d.col_offset), d.end_lineno, chars(d.end_lineno, d.end_col_offset))
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.COMMENT:
+            drop(tok.start[0], tok.start[1], tok.end[0], tok.end[1])
+    out = []
+    for i, line in enumerate(lines):
+        for c0, c1 in sorted(blank.get(i, []), reverse=True):
+            line = line[:c0] + line[c1:]
+        if line.strip():
+            out.append(line.rstrip())
+    return "\n".join(out)
+
+
+@lru_cache(maxsize=None)
+def _code_text_of(path: str, mtime_ns: int, size: int) -> str:
+    """:func:`code_text` of a file, cached while the file is unchanged (stat in the key)."""
+    return code_text(Path(path).read_text(encoding="utf-8"))
+
+
 def code_digest(roots: Iterable[str]) -> str:
-    """sha256 over the module names and sources of ``closure(roots)`` and the library versions."""
+    """sha256 over the module names and :func:`code_text` of ``closure(roots)`` and the library versions."""
     files = module_files()
     h = hashlib.sha256()
     for m in closure(roots):
         h.update(m.encode())
-        h.update(files[m].read_bytes())
+        st = files[m].stat()
+        h.update(_code_text_of(str(files[m]), st.st_mtime_ns, st.st_size).encode())
     for lib, version in sorted(library_versions().items()):
         h.update(f"{lib}={version}".encode())
     return h.hexdigest()

@@ -57,8 +57,22 @@ def test_key_changes_with_code_below_the_model_and_only_there(package_copy):
     provenance._closure.cache_clear(); provenance._graph_cached.cache_clear()
     assert provenance.code_digest(roots) == before
     plane = package_copy / "meshes" / "plane.py"             # two imports below the model
-    plane.write_text(plane.read_text().replace("gmsh", "gmsh ", 1))
+    src = plane.read_text()
+    # documentation is not code: a docstring and a comment edited leave the key alone
+    doc = src.replace('"""', '"""Edited. ', 1).replace("# ", "# edited ", 1)
+    assert doc != src
+    plane.write_text(doc)
+    assert provenance.code_digest(roots) == before
+    plane.write_text(src.replace("import gmsh", "import gmsh as gmsh", 1))      # a statement changed
     assert provenance.code_digest(roots) != before
+
+
+def test_code_text_drops_documentation_only():
+    src = ('"""Module doc."""\nimport numpy as np  # why\n\n\nclass A:\n    """Class doc,\n    two lines."""\n'
+           '    x = "not a docstring"  # trailing\n\n    def f(self):\n        """f doc."""\n        return 1\n')
+    assert provenance.code_text(src) == ('import numpy as np\nclass A:\n    x = "not a docstring"\n'
+                                         '    def f(self):\n        return 1')
+    assert provenance.code_text(src.replace("return 1", "return 2")) != provenance.code_text(src)
 
 
 @pytest.mark.slow
