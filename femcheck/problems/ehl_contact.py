@@ -30,6 +30,9 @@ from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, material_keys, model_keys, tolerance_key
 
 MODEL_NAMES = ("ehl", "moes", "hamrock_dowson", "dry")
+# What a designer reads first: the minimum film (lambda ratio, wear), then the central film, the dent's
+# additional pressure (life), the peak pressure
+DESIGN_QUANTITIES = ("h_min", "H_min_moes", "h_central", "H_central_moes", "additional_pressure", "p_max")
 # The Moes groups replace the load and the speed: the ones given last (an override over the scene file) win
 ALTERNATIVES = ((("load.normal", "kinematics.mean_speed"), ("ehl.M", "ehl.L")),)
 M_RANGE = (5.0, 2000.0)          # Moes M the solver is tested on (issue 14: 100-1200, 1000 at L = 2)
