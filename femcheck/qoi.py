@@ -509,7 +509,7 @@ def ellipse_fit(X: np.ndarray, Y: np.ndarray, p: np.ndarray) -> dict[str, float]
     """Contact ellipse of a 2D pressure field by a least-squares fit of p^2 with a full quadratic (exact only
     for a Hertzian field p^2 = p0^2 (1 - x^2/a^2 - y^2/b^2)); semi-axes from the quadratic's centre to its zero
     level, ``peak`` the fitted maximum (Pa), ``fit_residual`` the rms misfit of p^2 / p_max^2. Not used for
-    reference quantities (issue 12): :func:`edge` and :func:`centre_value_2d` do not assume the shape."""
+    reference quantities: :func:`edge` and :func:`centre_value_2d` do not assume the shape."""
     q = np.asarray(p, dtype=float) ** 2
     sel = q > 0
     if sel.sum() < 6:

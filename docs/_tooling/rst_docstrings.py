@@ -10,7 +10,7 @@ keys, which hash the source of every module a model imports, do not change):
   documented on the site, plain code where it is not (no warning either way);
 - square brackets outside code are escaped, so an equation never turns into a link;
 - a paragraph ending in ``::`` (an rST literal block follows) ends in ``:``;
-- a parenthesised tracker reference such as ``(issue 12, finding 2)`` is left out: it means nothing to a user.
+- a parenthesised tracker reference such as ``(issue N, finding M)`` is left out: it means nothing to a user.
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ from typing import Any
 import griffe
 
 _ROLE = re.compile(r":(?:py:)?(?:func|class|mod|meth|attr|data|obj|exc|const):`~?([^`<>]+?)`")
-_TRACKER = re.compile(r"\s*\([Ii]ssue \d+[^()]*\)")   # "(issue 12, finding 2)": for developers, not users
+_TRACKER = re.compile(r"\s*\([Ii]ssue \d+[^()]*\)")   # "(issue N, finding M)": for developers, not users
 _CODE = re.compile(r"(``.+?``|`[^`\n]+`)", re.S)
 
 

@@ -2,7 +2,7 @@
 theory (:mod:`femcheck.cect.conformal`) and, as its contrast, by the planar exact theory with the Hertz quadratic
 gap (:mod:`femcheck.cect.exact`).
 
-Free rolling (issue 11 item 3): the ring's surface speed V is given; the body's angular velocity omega is the
+Free rolling: the ring's surface speed V is given; the body's angular velocity omega is the
 unknown that makes the rolling-direction force F_x = sum p_x dA vanish (1-D root find: Brent's method on a
 bracket from the rigid slip, every solve warm-started from the last; the normal problem is solved once under
 load control when it does not couple to the tangential one). The load is the resultant of the contact pressures

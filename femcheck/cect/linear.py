@@ -10,7 +10,7 @@ Johnson, *Contact Mechanics*, 1985, §8.4 and Table 8.1) gives
     Mz = +G c^3 C23 eta - G c^4 C33 phi             (N m)
 
 with the dimensionless creep coefficients C_ij(a/b, nu). The coefficients are inputs here: femcheck computes them
-with its exact solver (issue 6); this module holds no table. The equations are valid only for creepages small
+with its exact solver; this module holds no table. The equations are valid only for creepages small
 compared with mu N / (G c^2 C_ij) (the creep force grows without the Coulomb limit).
 """
 from __future__ import annotations

@@ -199,7 +199,7 @@ class Multigrid:
         """Rigid gap of every level at time T: the finest grid samples the indent at its nodes; each coarser grid
         takes the full weighting of the next finer grid's indent part (the paraboloid stays exact).
 
-        Why not sample the indent on the coarse grids too (measured, issue 14): a coarse grid that samples a
+        Why not sample the indent on the coarse grids too (measured): a coarse grid that samples a
         narrow indent at its nodes (Phi = 0.5 on the 16-interval coarsest grid: two cells) sees a hole or a
         shoulder depending on where the nodes fall, and its correction misleads the fine grid: the crossing at
         M = 1200, L = 19 on 257^2 stalled as the indent entered the inlet (D/Phi = 0.35: step 125 of 192,
@@ -255,7 +255,7 @@ class Multigrid:
         corr = prolong_bilinear(cv.P - start)
         # only inside the pressurised zone, not on its rim: at the cavitation boundary (the outlet spike, the
         # side edges) the coarse grid does not see the free boundary, and its correction there overshot and
-        # diverged on 513^2 at high L (measured, issue 14)
+        # diverged on 513^2 at high L (measured)
         lv.P += np.where(pressurised_patch(lv.P), corr, 0.0)
         np.maximum(lv.P, 0.0, out=lv.P)
         self.relax(l, self.post)

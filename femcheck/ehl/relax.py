@@ -18,7 +18,7 @@ Rows whose points i-2 ... i+2 are not all
 pressurised keep the diagonal only (cavitation boundary). Cavitation: P >= 0 after every update (Reynolds /
 Swift-Stieber condition by complementarity).
 
-Why the transient Gauss-Seidel rows are under-relaxed more (measured, issue 14). In the steady equation the elastic
+Why the transient Gauss-Seidel rows are under-relaxed more (measured). In the steady equation the elastic
 film enters only through the wedge d(rho H)/dX: the kernel is differenced along the line, its smooth far field
 cancels, and the six line points of the line matrix carry the coupling. With the NU2 time term (time step = mesh
 size; the h > hT branch on the coarse grids) the new time level enters un-differenced, (1.5/hT) rho H: a first-kind
@@ -43,7 +43,7 @@ under-relaxing them too nearly doubled the W-cycles per time step (8.9 instead o
 but smoothed only x0.64 in 12 sweeps. The distributive rows are stable (their change is nearly film-neutral: the
 kernel dK decays as a dipole) and keep omega = 0.3.
 
-The steady relaxation on grids finer than h_ref (measured on 513^2, issue 14). Up to 257^2 it is unchanged
+The steady relaxation on grids finer than h_ref (measured on 513^2). Up to 257^2 it is unchanged
 (0.4 / 0.3). On 513^2 at M = 100, L = 19 the fine-grid relaxation alone diverges from a nearly converged state
 (mean scaled residual 1.4e-4 -> 4.9e-3 in 15 sweeps): distributive rows (xi 0.05-0.1) where the pressure builds
 up at the inlet edge of the Hertz zone, and Gauss-Seidel rows with xi = 0.45-0.7 at the side edges flipping sign
@@ -55,7 +55,7 @@ rows too stalled the iteration near 1e-7 (M = 347, L = 17.2: 150 cycles), and sc
 alone (0.2) stalled at 5e-5. The transient keeps omega_T and 0.3 for its distributive rows (its 513^2 crossing at
 M = 1200, L = 3 converged with them).
 
-Why the compressibility term (measured, issue 14). Venner's line matrix keeps only the elastic change of the film
+Why the compressibility term (measured). Venner's line matrix keeps only the elastic change of the film
 (rho dH/dP). In an indent's hole the film is some 20 times the contact's (H = 0.19 against 0.01 at M = 1200,
 L = 19), and there H drho/dP (Dowson-Higginson drho/dP = 0.37 at P = 0.23: 0.075) is 7 times the elastic
 self-coupling c_el K_00 (0.0112 on 257^2): the distributive rows in the hole over-corrected, and the crossing
@@ -159,7 +159,7 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
         return c_el * out
 
     # compressibility: r = rho H also changes through rho(P); in a deep film (an indent's hole, H ~ 0.2 against
-    # ~0.01 in the contact) H drho/dP outweighs the elastic self-coupling c_el K0 (measured, issue 14)
+    # ~0.01 in the contact) H drho/dP outweighs the elastic self-coupling c_el K0 (measured)
     comp = {m: 0.0 for m in range(-3, 3)}
     if density_slope is not None and ht is not None:
         gt = (np.maximum(H, 0.0) * density_slope(P))[:, J].T      # H drho/dP along each line (H < 0 early on)

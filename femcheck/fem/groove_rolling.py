@@ -1,5 +1,5 @@
 """FE reference (``fem``) of the groove-rolling scene: a crowned body of revolution rolling freely in a grooved
-ring (or on a grooved straight rail) with Coulomb friction, one conformal contact (issue 11 items 3 and 6).
+ring (or on a grooved straight rail) with Coulomb friction, one conformal contact.
 
 Geometry (FE roller frame, m): crowned body about the y axis through the origin, rolling radius r0 at its crown
 apex, crown radius R_c; the ring touches it at (0, 0, -r0); the groove circle (radius r_g > R_c) has its centre

@@ -16,7 +16,7 @@ pressure is singular: it grows with refinement by nature, so it is not a quantit
 stats["levels"], the finest in stats["mesh_dependent"], and its certificate says "mesh-dependent by nature".
 Per quantity a convergence certificate (stats["certificates"], :func:`femcheck.solvers.convergence.certify`).
 
-Why the centre pressure used to fall 0.75 % per level (issue 12): it came from a least-squares fit of
+Why the centre pressure used to fall 0.75 % per level: it came from a least-squares fit of
 p^2 = p0^2 (1 - x^2/a^2) over the whole width of a central band, whose nodes next to the contact edges (where P1
 reactions are biased) weigh less on finer meshes; the local centre value does not depend on them.
 """

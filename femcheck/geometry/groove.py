@@ -1,5 +1,5 @@
 """A crowned body of revolution rolling in a grooved ring or on a straight grooved rail: the one-contact core of
-the spherical roller bearing (issue 11 item 3; scene kind ``groove_rolling``).
+the spherical roller bearing (scene kind ``groove_rolling``).
 
 Frame (m): the nominal contact point at the origin, X the rolling direction (the material of both bodies flows
 through the contact along -X), Y lateral (both axes of revolution are parallel to Y: no contact angle), Z the

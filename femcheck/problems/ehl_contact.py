@@ -35,7 +35,7 @@ MODEL_NAMES = ("ehl", "moes", "hamrock_dowson", "dry")
 DESIGN_QUANTITIES = ("h_min", "H_min_moes", "h_central", "H_central_moes", "additional_pressure", "p_max")
 # The Moes groups replace the load and the speed: the ones given last (an override over the scene file) win
 ALTERNATIVES = ((("load.normal", "kinematics.mean_speed"), ("ehl.M", "ehl.L")),)
-M_RANGE = (5.0, 2000.0)          # Moes M the solver is tested on (issue 14: 100-1200, 1000 at L = 2)
+M_RANGE = (5.0, 2000.0)          # Moes M the solver is tested on (thesis range 100-1200, 1000 at L = 2)
 L_RANGE = (1.0, 25.0)
 
 SCHEMA: dict[str, Key] = {
@@ -227,6 +227,6 @@ def stress_cases(scene: Scene) -> list:
 
 
 def bench_sweeps(scene: Scene) -> dict[str, list[dict[str, Any]]]:
-    """Steady: 65^2 - 257^2 (issue 14: 257^2 under 60 s); indent crossing: 65^2 and 129^2 (under 2 min)."""
+    """Steady: 65^2 - 257^2 (257^2 under 60 s); indent crossing: 65^2 and 129^2 (under 2 min)."""
     grids = (65, 129) if has_indent(scene.params) else (65, 129, 257)
     return {"ehl": [{"numerics.grid": n, "numerics.refinements": 1} for n in grids]}

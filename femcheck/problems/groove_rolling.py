@@ -1,4 +1,4 @@
-"""A crowned body of revolution rolling freely in a grooved ring or on a straight grooved rail (issue 11 item 3):
+"""A crowned body of revolution rolling freely in a grooved ring or on a straight grooved rail:
 the one-contact core of the spherical roller bearing of seed 000, with Coulomb friction.
 
 Geometry and frame: :mod:`femcheck.geometry.groove` (X rolling, Y along both axes, Z the nominal normal into the
@@ -15,7 +15,7 @@ Models (:mod:`femcheck.cect.groove_contact`):
   neither spin nor a varying rolling radius, so it rolls freely at zero creepage with full adhesion and no
   frictional power; its normal problem differs from the conformal one by the quadratic gap and the flat
   contact plane only.
-- ``fem``: the frictional finite-element reference (issue 11 item 6, :mod:`femcheck.fem.groove_rolling`): FE
+- ``fem``: the frictional finite-element reference (:mod:`femcheck.fem.groove_rolling`): FE
   compliances of the whole crowned body and a ring segment (Gmsh layered P2 meshes, scikit-fem, one
   factorisation per body) condensed onto the contact cells, steady rolling solved by the FE side's own semi-smooth
   Newton (:mod:`femcheck.solvers.coulomb3d`), free rolling and load control; levels refining grid and mesh

@@ -1,6 +1,6 @@
 """Layered (coated) contact: a rigid cylinder (line, plane strain) or sphere (point) pressed on a layer
 (E1, nu1, thickness h) perfectly bonded to an elastic substrate (E2, nu2) or to a rigid base (layer-line,
-layer-point, coated-roller; issue 5).
+layer-point, coated-roller).
 
 The contact is line contact when the scene gives ``load.per_length`` (N/m) and point contact when it gives
 ``load.normal`` (N). The layer is given either dimensionally (``layer.E``, ``layer.thickness``) or by the

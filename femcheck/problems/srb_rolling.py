@@ -1,4 +1,4 @@
-"""The roller of seed 000's spherical roller bearing in steady rolling with Coulomb friction (issue 11 item 5; spec
+"""The roller of seed 000's spherical roller bearing in steady rolling with Coulomb friction (spec
 srb-rolling §3, §6, §7): its equilibrium between the two raceways (six unknowns: the centre offsets d_Y, d_Z, tilt,
 skew, cage speed omega_m, roller spin omega_R) with both contacts solved by Kalker's exact theory on the conformal
 surfaces, and seed 000 Table 2.
