@@ -25,6 +25,9 @@ smooth maximum:
 
 ``contact_edge`` and ``ellipse_fit`` are the former least-squares fits of p^2, exact only for Hertzian fields;
 they remain for the callers that locate crossings of other fields (friction_line) and for the peer benchmark.
+
+The module is above 500 lines because the edge estimator, its band adaptation and its covariance share private
+fitting helpers with the centre and peak fits; every model's quantities go through this one definition.
 """
 from __future__ import annotations
 

@@ -133,3 +133,18 @@ def test_level_tables_of_contacts_and_coatings():
     assert {k: len(v) for k, v in reference_check.level_tables(per_contact).items()} == {"inner": 2, "outer": 1}
     per_coating = {"dlc": {"levels": [{"p_max": 1.0}, {"p_max": 1.1}]}, "si3n4": {"levels": [{"p_max": 2.0}]}}
     assert sorted(reference_check.level_tables(per_coating)) == ["dlc", "si3n4"]
+
+
+def test_a_vanishing_tangential_force_is_compared_against_the_normal_force():
+    # free rolling: the longitudinal force is zero to round-off (groove-rolling: 3.3e-15 N of 5500 N stored, 0 on
+    # another run); it is compared with a floor of 1e-6 x the normal force, a real change still fails
+    from femcheck.reference_check import compare_coarse
+    from femcheck.result import ModelResult
+
+    def res(fx, fn=5500.0):
+        return ModelResult("fem", "ok", 0.0, {}, {"levels": [{"normal_force": fn, "creep_force_x": fx, "p_max": 1e9}]})
+
+    assert compare_coarse(res(3.3e-15), res(0.0), 1e-6)[1] == []
+    assert compare_coarse(res(3.3e-15), res(1e-2), 1e-6)[1]               # 1.8e-6 of the normal force
+    assert compare_coarse(res(100.0), res(100.02), 1e-6)[1]               # 3.6e-6 of the normal force
+    assert compare_coarse(res(3.3e-15, 5500.0), res(0.0, 5500.1), 1e-6)[1]  # the normal force itself is held

@@ -28,6 +28,9 @@ Quantities (SI): line ``p_max`` (Pa), ``half_width`` (m), ``total_force`` (N/m);
 ``semi_axis_x``, ``semi_axis_y`` (m), ``total_force`` (N). The bem model's stats carry ``edge_estimates``
 (:func:`edge_estimates`): the fitted edge beside the contact cells' own measure (strip count or area radius), and a
 ``note`` when they differ by more than a cell plus the fit's bias bound.
+
+The module is above 500 lines because it adapts both geometries (line and point) for every model of the kind,
+with the layered BEM's two edge estimates.
 """
 from __future__ import annotations
 
