@@ -37,9 +37,12 @@ frictionless top, k = 3 G / h^3). Dimensionless; t = xi h with xi in rad/m, h in
 """
 from __future__ import annotations
 
-import numpy as np
+from typing import Any
 
-from ..errors import InputError
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import ConvergenceError, InputError
 
 
 def kappa(nu: float) -> float:
@@ -109,3 +112,30 @@ def panels(cutoff: float, frequency: float, order: int = 16) -> tuple[np.ndarray
 
 
 __all__ = ["kappa", "factor", "deficit", "panels", "DEFICIT_CUTOFF"]
+
+
+def contact_size(residual, x0: float, rtol: float, model: str, what: str) -> tuple[float, Any, int]:
+    """Root of ``residual(log size)`` (the log of computed over applied load of a contact of that size): from
+    the first guess ``x0`` step out by a factor 1.25 until the root is bracketed, then Brent to ``rtol``.
+    Returns (root, brentq's result, evaluations of ``residual``); a root not bracketed within 1.25^200 of the
+    guess is a :class:`femcheck.errors.ConvergenceError` naming ``model`` and ``what`` was sought."""
+    count = 0
+
+    def f(x: float) -> float:
+        nonlocal count
+        count += 1
+        return residual(x)
+
+    f0 = f(x0)
+    step = np.log(1.25) * (-1.0 if f0 > 0 else 1.0)
+    x1, f1 = x0, f0
+    for _ in range(200):
+        x1 = x1 + step
+        f1 = f(x1)
+        if f1 * f0 <= 0:
+            break
+    else:
+        raise ConvergenceError(model, count, f1, 0.0, f"the {what} was not bracketed within 1.25^200 of the first "
+                                                      "guess")
+    root, info = brentq(f, min(x0, x1), max(x0, x1), xtol=1e-15, rtol=rtol, full_output=True)
+    return float(root), info, count

@@ -44,9 +44,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
-from ..errors import ConvergenceError, InputError
+from ..errors import InputError
 from . import bonded_layer, hertz, thin_layer
 
 
@@ -197,11 +196,9 @@ def contact(E: float, nu: float, thickness: float, radius: float, load: float, n
     Es = E / (1.0 - nu**2)
     target = load * radius / (2.0 * Es * thickness**3)          # lambda^3 int gamma at the solution
     lam_hi = hertz.point_contact(load, radius, Es).semi_axis_x / thickness
-    count = {"evaluations": 0}
 
     def f(loglam: float) -> float:
         lam = float(np.exp(loglam))
-        count["evaluations"] += 1
         d = _solve_fixed(lam, nu, n or default_nodes(lam))
         return float(np.log(lam**3 * d.integral / target))
 
@@ -211,25 +208,13 @@ def contact(E: float, nu: float, thickness: float, radius: float, load: float, n
     if nu <= thin_layer.NU_COMPRESSIBLE_MAX:
         guesses.append(thin_layer.compressible(E, nu, thickness, radius, load, "circular").a / thickness)
     guesses.append(thin_layer.incompressible(E, thickness, radius, load, "circular").a / thickness)
-    x0 = np.log(min(guesses))
-    f0 = f(x0)
-    step = np.log(1.25) * (-1.0 if f0 > 0 else 1.0)
-    x1, f1 = x0, f0
-    for _ in range(200):
-        x1 = x1 + step
-        f1 = f(x1)
-        if f1 * f0 <= 0:
-            break
-    else:
-        raise ConvergenceError("layer_axisymmetric", count["evaluations"], f1, 0.0,
-                               "the contact radius was not bracketed within 1.25^200 of the first guess")
-    lo, hi = min(x0, x1), max(x0, x1)
-    root, info = brentq(f, lo, hi, xtol=1e-15, rtol=rtol, full_output=True)
+    root, info, evaluations = bonded_layer.contact_size(f, float(np.log(min(guesses))), rtol, "layer_axisymmetric",
+                                                        "contact radius")
     lam = float(np.exp(root))
     nn = n or default_nodes(lam)
     d = _solve_fixed(lam, nu, nn)
     stats = {"nodes": nn, "residual": d.residual, "iterations": info.iterations,
-             "evaluations": count["evaluations"], "load_error": float(lam**3 * d.integral / target - 1.0)}
+             "evaluations": evaluations, "load_error": float(lam**3 * d.integral / target - 1.0)}
     return _dimensional(E, nu, thickness, radius, d, stats)
 
 

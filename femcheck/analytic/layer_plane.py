@@ -41,9 +41,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
-from ..errors import ConvergenceError, InputError
+from ..errors import InputError
 from . import bonded_layer, hertz, thin_layer
 
 # the (e^-u - K)/u integrand of the approach decays like e^-u: cut off where it is below 1e-19
@@ -240,11 +239,9 @@ def contact(E: float, nu: float, thickness: float, radius: float, load_per_lengt
     _check(E, nu, thickness, radius, load_per_length)
     Es = E / (1.0 - nu**2)
     target = 2.0 * radius * load_per_length / (np.pi * Es * thickness**2)     # lambda^2 x integral
-    count = {"evaluations": 0}
 
     def f(loglam: float) -> float:
         lam = float(np.exp(loglam))
-        count["evaluations"] += 1
         d = _solve_fixed(lam, nu, n or default_nodes(lam))
         return float(np.log(lam**2 * d.integral / target))
 
@@ -252,24 +249,13 @@ def contact(E: float, nu: float, thickness: float, radius: float, load_per_lengt
     if nu <= thin_layer.NU_COMPRESSIBLE_MAX:
         guesses.append(thin_layer.compressible(E, nu, thickness, radius, load_per_length, "line").a / thickness)
     guesses.append(thin_layer.incompressible(E, thickness, radius, load_per_length, "line").a / thickness)
-    x0 = np.log(min(guesses))
-    f0 = f(x0)
-    step = np.log(1.25) * (-1.0 if f0 > 0 else 1.0)
-    x1, f1 = x0, f0
-    for _ in range(200):
-        x1 = x1 + step
-        f1 = f(x1)
-        if f1 * f0 <= 0:
-            break
-    else:
-        raise ConvergenceError("layer_plane", count["evaluations"], f1, 0.0,
-                               "the half-width was not bracketed within 1.25^200 of the first guess")
-    root, info = brentq(f, min(x0, x1), max(x0, x1), xtol=1e-15, rtol=rtol, full_output=True)
+    root, info, evaluations = bonded_layer.contact_size(f, float(np.log(min(guesses))), rtol, "layer_plane",
+                                                        "half-width")
     lam = float(np.exp(root))
     nn = n or default_nodes(lam)
     d = _solve_fixed(lam, nu, nn)
     stats = {"nodes": nn, "residual": d.residual, "iterations": info.iterations,
-             "evaluations": count["evaluations"], "load_error": float(lam**2 * d.integral / target - 1.0)}
+             "evaluations": evaluations, "load_error": float(lam**2 * d.integral / target - 1.0)}
     return _dimensional(E, nu, thickness, radius, d, stats)
 
 
