@@ -1,4 +1,4 @@
-"""Command line: femcheck list | show | run | suite | bench | stress.
+"""Command line: femcheck list | show | run | suite | bench | stress | map | calibrate | export.
 
 Exit codes: 0 every comparison passed, 1 a comparison failed or a model failed, 2 bad input (one line on
 stderr naming the key and its allowed range; nothing written).
@@ -419,6 +419,26 @@ def map_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
         out_console.print(f"- {line}")
     out_console.print(f"written {index}, {out}/map.json")
     raise typer.Exit(1 if any(p.status == "failed" for p in vmap.points) else 0)
+
+
+@app.command("export")
+def export_cmd(scene: str = typer.Argument(..., help="scene name or TOML path (kinds: point_contact, line_contact)"),
+               fmt: str = typer.Option(..., "--format", help="calculix or abaqus"),
+               level: int = typer.Option(0, "--level", help="mesh level of the scene's FE family (0 = coarsest)"),
+               order: int = typer.Option(2, "--order", help="element order: 1 linear (C3D4/CPE3), 2 quadratic "
+                                                          "(C3D10/CPE6)"),
+               out: Path = typer.Option(..., "--out", help="directory the deck is written to"),
+               set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override")) -> None:
+    """Write the scene's FE reference as an Abaqus / CalculiX input deck (femcheck's own mesh, rigid indenter,
+    node-to-surface penalty contact, two load steps); the heading says which outputs give the contact
+    pressure."""
+    from .export.write import export
+
+    sc = _scene(scene, set_)
+    info = export(sc, fmt.lower(), level, order, out)
+    out_console.print(f"written {info['deck']}: {info['element']}, level {info['level']} (h = "
+                      f"{info['h_over_a']:.4g} a), {info['block_nodes']} block nodes, {info['block_dofs']} block DOFs;"
+                      f" run: ccx -i {Path(info['deck']).with_suffix('')}", highlight=False, soft_wrap=True)
 
 
 @app.command()

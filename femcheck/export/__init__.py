@@ -1,0 +1,8 @@
+"""Export of femcheck's FE scenes as Abaqus / CalculiX input decks, and a reader of CalculiX results.
+
+One module per job: :mod:`.model` the format-neutral deck (nodes, elements, sets, contact, steps),
+:mod:`.elements` element types, quadratic promotion and face numbering, :mod:`.indenter` the meshed rigid
+indenter, :mod:`.scenes` a scene kind -> its deck, :mod:`.deck` the keyword writer, :mod:`.frd` the reader of
+``.frd`` / ``.dat`` results, :mod:`.inp` a reader and format check of the decks, :mod:`.pressure` the contact
+pressure and femcheck's estimators on those results, :mod:`.write` the entry point (:func:`.write.export`).
+"""

@@ -1,0 +1,69 @@
+"""Contact quantities from a solved deck: the contact pressure on the block's contact face and femcheck's own
+estimators on it (:mod:`femcheck.qoi`), SI units.
+
+Pressure: on linear 3D faces (C3D4) CalculiX's contact stress CPRESS at the slave nodes (0 where a node has no
+contact element); on quadratic faces (C3D10, CPE6) the nodal stress -sigma_zz (3D) / -sigma_yy (2D) at the
+contact-face nodes (CalculiX's nodal stresses: extrapolated from the integration points and averaged), since
+CPRESS of quadratic faces is split unevenly between corner and mid-side nodes. In 2D CalculiX reports CPRESS on
+the nodes of the wedges it expands CPE elements into, whose coordinates the .frd does not carry, so CPE3 also
+takes -sigma_yy (constant per element, averaged at the nodes). Tension is clipped to 0.
+
+Estimators: 3D :func:`femcheck.qoi.symmetric_contact` (even quartic about the centre for ``p_max``, power-law
+edges for the semi-axes), 2D :func:`femcheck.qoi.peak` (even quartic about x = 0) and :func:`femcheck.qoi.edge`;
+``p_max_nodal`` the largest nodal value. ``approach`` (m): the rigid indenter's displacement; ``total_force``:
+the bottom reaction scaled to the full contact (x 4 for the quarter, x 2 for the half model).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..qoi import edge, peak, symmetric_contact
+from . import frd as frd_reader
+from . import inp
+
+
+def read(deck_path: Path) -> dict[str, float | str]:
+    """Quantities of the solved deck ``deck_path`` (its ``.frd`` and ``.dat`` beside it)."""
+    deck_path = Path(deck_path)
+    cards = inp.parse(deck_path.read_text())
+    etype = inp.element_types(cards)["EBLOCK"]
+    dim = 2 if etype.startswith("CPE") else 3
+    quadratic = etype in ("C3D10", "CPE6")
+    top = inp.node_sets(cards)["NTOP"]
+    res = frd_reader.read_frd(deck_path.with_suffix(".frd"))
+    dat = frd_reader.read_dat(deck_path.with_suffix(".dat"))
+    index = {int(n): i for i, n in enumerate(res.nodes)}
+    rows = np.array([index[int(n)] for n in top])
+    X = res.coords[rows].T
+    stress = res.last("STRESS")
+    srow = {int(n): i for i, n in enumerate(stress.nodes)}
+    normal = "SZZ" if dim == 3 else "SYY"
+    p_stress = np.array([-stress.values[srow[int(n)], stress.components.index(normal)] for n in top])
+    p_cpress = np.zeros(top.size)
+    try:
+        c = res.last("CONTACT")
+        cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
+        p_cpress = np.array([cp.get(int(n), 0.0) for n in top])
+    except KeyError:
+        pass
+    by_stress = quadratic or dim == 2
+    p = np.clip(p_stress if by_stress else p_cpress, 0.0, None)
+    out: dict = {"p_max_nodal": float(p.max()), "p_max_nodal_stress": float(p_stress.max()),
+                             "contact_nodes": int((p > 0).sum()), "pressure_from": "-S" if by_stress else "CPRESS"}
+    if dim == 3:
+        out["p_max_nodal_cpress"] = float(p_cpress.max())
+    if dim == 3:
+        fit = symmetric_contact(X[0], X[1], p)
+        out.update({k: float(fit[k]) for k in ("p_max", "semi_axis_x", "semi_axis_y", "p_max_std")})
+    else:
+        order = np.argsort(X[0])
+        x, pp = X[0][order], p[order]
+        pk = peak(x, pp, centre=0.0)
+        out.update({"p_max": pk.value, "p_max_std": pk.std, "half_width": edge(x, pp).position})
+    u = dat[("displacements", "NREF")]
+    out["approach"] = float(-u[0, dim])
+    out["total_force"] = float(dat[("total force", "NBOTTOM")][0, dim]) * (4.0 if dim == 3 else 2.0)
+    out["n_nodes"] = int(res.nodes.size)
+    return out
