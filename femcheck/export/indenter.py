@@ -4,7 +4,7 @@ face is the indenter's profile, made one rigid body in the deck.
 Neither CalculiX nor a portable Abaqus deck has an analytical paraboloid surface, so the profile z = g(x, y)
 (m) is sampled on a structured grid of spacing ``spacing`` (m). Bilinear faces between exact nodes overestimate
 the gap of a paraboloid by at most s^2 / (8 R) inside a face; relative to the Hertz approach a^2 / R that is
-(s/a)^2 / 8 (4.9e-4 at s = a/16), far below the element error of the block. The grid starts two cells
+(s/a)^2 / 8 (4.9e-4 at s = a/16; on an ellipse each axis's own semi-axis), far below the element error of the block. The grid starts two cells
 before the symmetry planes so that every slave node on x = 0 or y = 0 projects inside a master face.
 """
 from __future__ import annotations
@@ -20,11 +20,12 @@ def _axis(extent: float, spacing: float) -> np.ndarray:
 
 
 def layer_3d(gap: Callable[[np.ndarray, np.ndarray], np.ndarray], extent_x: float, extent_y: float,
-             spacing: float, thickness: float) -> tuple[np.ndarray, np.ndarray]:
-    """(points (3, N), C3D8 cells (8, M) 0-based) of a layer over [-2s, extent_x] x [-2s, extent_y]: lower face
+             spacing: tuple[float, float], thickness: float) -> tuple[np.ndarray, np.ndarray]:
+    """(points (3, N), C3D8 cells (8, M) 0-based) of a layer over [-2s_x, extent_x] x [-2s_y, extent_y] with
+    spacings ``spacing`` = (s_x, s_y) (each a fraction of its own semi-axis for an elongated contact): lower face
     z = gap(x, y), upper face z = gap + thickness. Nodes 1-4 of each cell lie on the lower face counter-clockwise
     seen from above, so face S1 is the lower face with its outward normal pointing down, at the block."""
-    xs, ys = _axis(extent_x, spacing), _axis(extent_y, spacing)
+    xs, ys = _axis(extent_x, spacing[0]), _axis(extent_y, spacing[1])
     X, Y = np.meshgrid(xs, ys, indexing="ij")
     Z = gap(X, Y)
     nx, ny = X.shape

@@ -95,7 +95,7 @@ def hertz_point(params: dict, level: int, order: int) -> Deck:
         in_zone = lambda X: (X[0] <= SLAVE_ZONE * zx + tiny) & (X[1] <= SLAVE_ZONE * zy + tiny)
     sel, face = elements.faces_on(pts, tets, elements.TET_FACES, lambda X: (np.abs(X[2]) < tiny) & in_zone(X))
     gap: Callable = gap_function(params)
-    spacing = small / MASTER_CELLS_PER_A
+    spacing = (ax / MASTER_CELLS_PER_A, ay / MASTER_CELLS_PER_A)
     ipts, hexes = indenter.layer_3d(gap, MASTER_ZONE * zx, MASTER_ZONE * zy, spacing, 0.25 * small)
     pts, first = _append(pts, ipts)
     hexes = hexes + first
@@ -124,7 +124,7 @@ def hertz_point(params: dict, level: int, order: int) -> Deck:
             "block_dofs": 3 * n_block, "hertz": {"p_max": h.p_max, "semi_axis_x": ax, "semi_axis_y": ay,
                                                  "approach": h.approach},
             "equivalent_block": {"E": block.E, "nu": block.nu}, "load_modelled": 0.25 * load,
-            "symmetry": "quarter (x = 0, y = 0)", "normal": "z", "master_spacing": spacing}
+            "symmetry": "quarter (x = 0, y = 0)", "normal": "z", "master_spacing": list(spacing)}
     return Deck(f"femcheck point contact, level {level} (h = {h_el / small:.4g} a), {etype}", 3, pts, blocks,
                 nsets, surfaces, {"BLOCK": (block.E, block.nu), "INDENTER": (block.E, block.nu)}, fixed,
                 contact, RigidIndenter("NINDENTER", "EINDENTER", ref, rot, 3), push, 0.25 * load, info)
