@@ -216,6 +216,8 @@ def one(m: dict, base: Path, baselines: Baselines | None, timeout: float, keep: 
 
 # -- results ------------------------------------------------------------------------------------------------------
 def write_results(results: dict, muts: list[dict], json_path: Path, md_path: Path, commit: str) -> None:
+    json_path.parent.mkdir(parents=True, exist_ok=True)
+    md_path.parent.mkdir(parents=True, exist_ok=True)
     tmp = json_path.with_suffix(".tmp")
     tmp.write_text(json.dumps(results, indent=1, sort_keys=True) + "\n")
     tmp.replace(json_path)
