@@ -13,6 +13,12 @@ Load control in two steps (the formulation the issue measured): step 1 pushes th
 step 2 releases the push and applies the scene's load on the modelled part (a quarter of ``load.normal`` in 3D,
 half of ``load.per_length`` times the unit thickness in 2D) at full value from its first increment.
 
+CalculiX evaluates node-to-surface contact on the deformed surface (the slave nodes' displaced positions), Hertz
+and femcheck's FE on the undeformed one: the surface's inward strain u_x/x, of order (1 - 2 nu) p0 / E*
+(-0.82 % near the centre in hertz-line), lowers CalculiX's p_max by 0.33 % there (measured against the same deck
+at a thousandth of the load). Compare at loads where that strain is small when the discretisation is the
+question.
+
 2D (hertz-line): plane-strain CPE3 / CPE6 elements, not one layer of C3D elements. The deck is then the
 natural 2D deck for Abaqus (which has plane-strain elements and 2D contact), and CalculiX expands CPE
 elements itself into one layer of C3D6 / C3D15 wedges with the plane-strain constraint on the out-of-plane
