@@ -190,6 +190,13 @@ def check_not_run(command: str, expected: list[str] = (), written: set[str] = fr
                     assert (ROOT / w.split("::")[0]).exists(), f"{w} does not exist"
         elif words[0] == "mkdocs":
             assert (ROOT / "mkdocs.yml").is_file()
+        elif words[0] == "ccx":
+            # a deck written by `femcheck export`: DIR/<scene>-L<level>-<element>, the scene a built-in one
+            from femcheck.scene import builtin_scene_files
+
+            assert words[1] == "-i" and len(words) == 3, f"{part!r}: shown as `ccx -i DECK`"
+            m = re.fullmatch(r"(?:.*/)?(.+)-L(\d+)-(C3D4|C3D10|CPE3|CPE6)", words[2])
+            assert m and m.group(1) in builtin_scene_files(), f"{words[2]!r} is not a deck femcheck export writes"
         else:
             raise AssertionError(f"no rule to check {part!r}: add one to tests/docs_blocks.py")
 
