@@ -208,3 +208,48 @@ def test_one_verdict_per_reference_and_the_design_quantity():
     (row,) = dashboard.rows(bearing)
     (rv,) = row.per_reference
     assert rv.design.quantity == "q_max" and rv.worst.quantity == "load_zone_angle" and rv.verdict == "not valid here"
+
+
+FIGURES = """<script>
+window.addEventListener('load', () => {
+  const out = {vw: innerWidth, page_width: document.scrollingElement.scrollWidth, imgs: []};
+  for (const im of document.querySelectorAll('img')) {
+    const r = im.getBoundingClientRect();
+    out.imgs.push({src: im.getAttribute('src'), nw: im.naturalWidth, nh: im.naturalHeight,
+                   width: r.width, height: r.height, right: r.right});
+  }
+  const pre = document.createElement('pre'); pre.id = 'measure'; pre.textContent = JSON.stringify(out);
+  document.body.appendChild(pre);
+});
+</script></body>"""
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("chromium") is None, reason="needs chromium (apt install chromium)")
+def test_report_figures_read_at_1400_px(tmp_path, monkeypatch):
+    """The plots of the scenes whose figures used to fail a reader (long contacts drawn as slivers, wide FE tables
+    off the page), opened in a 1400 x 1000 headless browser: every figure loads, none is a sliver (at least
+    150 px tall and 0.35 as tall as wide: a 0.5 x 20 mm map at true aspect was a few pixels), none runs past the
+    window, and the page itself does not scroll sideways (wide tables scroll in their own box)."""
+    from femcheck import runner
+    from stored_references import use_stored_references
+
+    use_stored_references(monkeypatch)
+    runs = [runner.run(load_scene(n)) for n in ("groove-rolling", "roller-finite", "carter-2d", "creep-curve")]
+    index = write_report(runs, tmp_path / "figs", "figs", 1.0)
+    probe = index.with_name("probe.html")
+    probe.write_text(index.read_text().replace("</body>", FIGURES))
+    r = subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                        "--window-size=1400,1000", "--virtual-time-budget=5000", "--dump-dom",
+                        probe.as_uri()], capture_output=True, text=True, timeout=180)
+    found = re.search(r'<pre id="measure">(.*?)</pre>', r.stdout, flags=re.S)
+    assert found, r.stderr[-2000:]
+    m = json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    assert m["page_width"] <= m["vw"] + 1, m["page_width"]
+    assert len(m["imgs"]) >= 4 * len(runs)
+    for im in m["imgs"]:
+        assert im["nw"] > 0, f"{im['src']} did not load"
+        assert im["height"] >= 150, im
+        # measured: every figure 0.45-0.6 tall for its width; long maps at true aspect (the former slivers) 0.23
+        assert im["nh"] >= 0.35 * im["nw"], im
+        assert im["right"] <= m["vw"] + 1, im
