@@ -239,7 +239,6 @@ def check_scene(scene: Scene | str, fraction: float = FRACTION, workers: int | N
     (module doc): the sweep is run (:func:`sweep`), or ``stored`` is used (an expensive sweep run once; its
     labels must be those of the current sweep). The source of a quantity is the first of :func:`sources` that
     gives it at two points or more."""
-    t0 = time.perf_counter()
     sc = load_scene(scene) if isinstance(scene, str) else scene
     if stored is not None and stored.labels != case_labels(sc):
         raise InputError("stored", f"the stored sweep of {sc.name} has other cases than the scene's stress sweep "

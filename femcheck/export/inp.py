@@ -4,7 +4,6 @@ against the format (:func:`check`) and to find its node sets again when reading 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 

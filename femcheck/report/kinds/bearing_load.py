@@ -130,7 +130,7 @@ def _table3(run: RunResult) -> Table | None:
         sh = np.asarray(shares, float)
         err = 100 * np.abs(sh - meas) / meas
         rows_out.append([label] + [float(v) for v in sh] + [float(err.max())])
-        rows_out.append([f"  error |sim - exp|/exp (%)"] + [float(v) for v in err] + [""])
+        rows_out.append(["  error |sim - exp|/exp (%)"] + [float(v) for v in err] + [""])
     header = ["row share (%)"] + [f"row {r + 1}" for r in range(meas.size)] + ["max error (%)"]
     return Table("Seed 003 Table 3: row shares of the work-side radial load", header, rows_out,
                  "Errors recomputed from the printed shares (the paper prints 9.73 % for GSC row 4; "
