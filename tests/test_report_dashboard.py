@@ -156,6 +156,19 @@ window.addEventListener('load', () => {
 </script></body>"""
 
 
+def measured_in_browser(index, script: str, budget_ms: int, timeout_s: float) -> dict:
+    """Open the report ``index`` with ``script`` appended in a 1400 x 1000 headless Chromium and return the JSON
+    the script writes into ``<pre id="measure">``."""
+    probe = index.with_name("probe.html")
+    probe.write_text(index.read_text().replace("</body>", script))
+    r = subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                        "--window-size=1400,1000", f"--virtual-time-budget={budget_ms}", "--dump-dom",
+                        probe.as_uri()], capture_output=True, text=True, timeout=timeout_s)
+    found = re.search(r'<pre id="measure">(.*?)</pre>', r.stdout, flags=re.S)
+    assert found, r.stderr[-2000:]
+    return json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+
+
 @pytest.mark.slow
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="needs chromium (apt install chromium)")
 def test_quick_report_top_shows_every_scene_verdict_and_cost(tmp_path, monkeypatch):
@@ -167,15 +180,7 @@ def test_quick_report_top_shows_every_scene_verdict_and_cost(tmp_path, monkeypat
     use_stored_references(monkeypatch)
     scenes = [load_scene(n) for n in builtin_scene_files() if "quick" in load_scene(n).tags]
     runs = [runner.run(sc) for sc in scenes]
-    index = write_report(runs, tmp_path / "quick", "quick", 1.0)
-    probe = index.with_name("probe.html")
-    probe.write_text(index.read_text().replace("</body>", MEASURE))
-    r = subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
-                        "--window-size=1400,1000", "--virtual-time-budget=3000", "--dump-dom",
-                        probe.as_uri()], capture_output=True, text=True, timeout=120)
-    found = re.search(r'<pre id="measure">(.*?)</pre>', r.stdout, flags=re.S)
-    assert found, r.stderr[-2000:]
-    m = json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    m = measured_in_browser(write_report(runs, tmp_path / "quick", "quick", 1.0), MEASURE, 3000, 120)
     assert {row["scene"] for row in m["rows"]} == {sc.name for sc in scenes}
     assert len(m["rows"]) == sum(len(run.models) for run in runs)
     # and every quantity of the quick suite has its SI unit in the report
@@ -236,15 +241,7 @@ def test_report_figures_read_at_1400_px(tmp_path, monkeypatch):
 
     use_stored_references(monkeypatch)
     runs = [runner.run(load_scene(n)) for n in ("groove-rolling", "roller-finite", "carter-2d", "creep-curve")]
-    index = write_report(runs, tmp_path / "figs", "figs", 1.0)
-    probe = index.with_name("probe.html")
-    probe.write_text(index.read_text().replace("</body>", FIGURES))
-    r = subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
-                        "--window-size=1400,1000", "--virtual-time-budget=5000", "--dump-dom",
-                        probe.as_uri()], capture_output=True, text=True, timeout=180)
-    found = re.search(r'<pre id="measure">(.*?)</pre>', r.stdout, flags=re.S)
-    assert found, r.stderr[-2000:]
-    m = json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    m = measured_in_browser(write_report(runs, tmp_path / "figs", "figs", 1.0), FIGURES, 5000, 180)
     assert m["page_width"] <= m["vw"] + 1, m["page_width"]
     assert len(m["imgs"]) >= 4 * len(runs)
     for im in m["imgs"]:
