@@ -40,41 +40,77 @@ def _heading(d: Deck, fmt: str) -> list[str]:
     info = d.info
     lines += [f"** written by femcheck export --format {fmt}; units SI (m, N, Pa)",
               f"** element {info['element']}, level {info['level']}, contact element size "
-              f"{info['h_contact']:.6g} m ({info['h_over_a']:.4g} of the Hertz semi-axis), "
-              f"{info['block_nodes']} block nodes, {info['block_dofs']} block DOFs",
-              f"** equivalent block: E = {_num(info['equivalent_block']['E'])} Pa, nu = "
-              f"{_num(info['equivalent_block']['nu'])} (contact modulus of the scene's pair on a rigid indenter)",
-              f"** symmetry: {info['symmetry']}; load on the modelled part {_num(d.force)} N"
-              + (" (per unit thickness 1 m)" if d.dim == 2 else ""),
-              f"** contact: {d.contact.formulation}; K = {_num(d.contact.stiffness)} Pa/m",
-              "** step 1 pushes the rigid indenter (establishes contact), step 2 releases the push and applies "
-              "the load",
-              "** contact pressure: " + ("CPRESS (linear faces)" if info["order"] == 1 else
-                                         f"-S{d.dim}{d.dim} at the contact-face nodes (quadratic faces: CPRESS "
-                                         "is split unevenly between corner and mid-side nodes)")]
+              f"{info['h_contact']:.6g} m ({info['h_over_a']:.4g} of the contact's semi-axis or half-width), "
+              f"{info['block_nodes']} deformable nodes, {info['block_dofs']} DOFs"]
+    if "equivalent_block" in info:
+        lines.append(f"** equivalent block: E = {_num(info['equivalent_block']['E'])} Pa, nu = "
+                     f"{_num(info['equivalent_block']['nu'])} (contact modulus of the scene's pair on a rigid "
+                     "indenter)")
+    lines.append(f"** symmetry: {info['symmetry']}; load on the modelled part {_num(d.force)} N"
+                 + (" (per unit thickness 1 m)" if d.dim == 2 else ""))
+    lines += [f"** contact: {c.formulation}; K = {_num(c.stiffness)} Pa/m" for c in d.all_contacts]
+    lines += [f"** {n}" for n in d.notes]
+    lines.append("** contact pressure: " + ("CPRESS (linear faces)" if info["order"] == 1 else
+                                            f"-S{d.dim}{d.dim} at the contact-face nodes (quadratic faces: CPRESS "
+                                            "is split unevenly between corner and mid-side nodes)"))
     return lines
 
 
 def _bcs(d: Deck, fmt: str) -> list[str]:
     out = []
+    rot_sets = {r.rot_set for r in d.all_rigid}
     for f in d.fixed:
-        if fmt == "abaqus" and f.nset == "NROT":
+        if fmt == "abaqus" and f.nset in rot_sets:
             continue
         for dof in f.dofs:
             out.append(f"{f.nset}, {dof}, {dof}")
     if fmt == "abaqus":              # rotations live on the reference node
         rot = (6,) if d.dim == 2 else (4, 5, 6)
-        out += [f"NREF, {r}, {r}" for r in rot]
+        out += [f"{r.ref_set}, {k}, {k}" for r in d.all_rigid for k in rot]
     return out
 
 
 def _outputs(d: Deck, fmt: str) -> list[str]:
     if fmt == "calculix":
-        return ["*NODE FILE", "U", "*EL FILE", "S", "*CONTACT FILE", "CSTR",
-                "*NODE PRINT, NSET=NREF", "U", "*NODE PRINT, NSET=NBOTTOM, TOTALS=ONLY", "RF"]
-    return ["*OUTPUT, FIELD", "*NODE OUTPUT", "U, RF", "*ELEMENT OUTPUT, DIRECTIONS=YES", "S",
-            "*CONTACT OUTPUT", "CSTRESS", "*NODE PRINT, NSET=NREF", "U",
-            "*NODE PRINT, NSET=NBOTTOM, TOTALS=YES", "RF"]
+        out = ["*NODE FILE", "U", "*EL FILE", "S", "*CONTACT FILE", "CSTR"]
+        for nset, var, totals in d.dat_prints():
+            out += [f"*NODE PRINT, NSET={nset}" + (", TOTALS=ONLY" if totals else ""), var]
+        return out
+    out = ["*OUTPUT, FIELD", "*NODE OUTPUT", "U, RF", "*ELEMENT OUTPUT, DIRECTIONS=YES", "S",
+           "*CONTACT OUTPUT", "CSTRESS"]
+    for nset, var, totals in d.dat_prints():
+        out += [f"*NODE PRINT, NSET={nset}" + (", TOTALS=YES" if totals else ""), var]
+    return out
+
+
+def _interactions(d: Deck, fmt: str) -> list[str]:
+    L: list[str] = []
+    done: set[str] = set()
+    for c in d.all_contacts:
+        if c.name in done:
+            continue
+        done.add(c.name)
+        L += [f"*SURFACE INTERACTION, NAME={c.name}", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
+              f"{_num(c.stiffness)}, {_num(c.tension)}" if fmt == "calculix" else _num(c.stiffness)]
+        if c.friction > 0.0:
+            # CalculiX: mu and the stick slope lambda; Abaqus: mu alone (its second field is a slip rate)
+            L += ["*FRICTION", f"{_num(c.friction)}, {_num(c.stick_slope)}" if fmt == "calculix"
+                  else _num(c.friction)]
+    for c in d.all_contacts:
+        L += [f"*CONTACT PAIR, INTERACTION={c.name}, TYPE=NODE TO SURFACE", f"{c.slave}, {c.master}"]
+    return L
+
+
+def _rigid(d: Deck, fmt: str) -> list[str]:
+    L = []
+    for ri in d.all_rigid:
+        if fmt == "calculix":
+            L.append(f"*RIGID BODY, NSET={ri.nset}, REF NODE={ri.ref + 1}, ROT NODE={ri.rot + 1}")
+        elif ri.elset is not None:
+            L.append(f"*RIGID BODY, ELSET={ri.elset}, REF NODE={ri.ref + 1}")
+        else:
+            L.append(f"*RIGID BODY, REF NODE={ri.ref + 1}, TIE NSET={ri.nset}")
+    return L
 
 
 def deck_lines(d: Deck, fmt: str) -> list[str]:
@@ -101,22 +137,21 @@ def deck_lines(d: Deck, fmt: str) -> list[str]:
         L.append(f"*SOLID SECTION, ELSET={b.elset}, MATERIAL={b.material}")
         if d.dim == 2:
             L.append("1.")                    # plane-strain thickness (m)
-    ri = d.indenter
-    if fmt == "calculix":
-        L.append(f"*RIGID BODY, NSET={ri.nset}, REF NODE={ri.ref + 1}, ROT NODE={ri.rot + 1}")
-    else:
-        L.append(f"*RIGID BODY, ELSET={ri.elset}, REF NODE={ri.ref + 1}")
+    L += _rigid(d, fmt)
     L += ["*AMPLITUDE, NAME=FULL", "0., 1., 1., 1."]
-    c = d.contact
-    L += ["*SURFACE INTERACTION, NAME=SI", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
-          f"{_num(c.stiffness)}, {_num(c.tension)}" if fmt == "calculix" else _num(c.stiffness),
-          "*CONTACT PAIR, INTERACTION=SI, TYPE=NODE TO SURFACE", f"{c.slave}, {c.master}"]
-    ref = ri.ref + 1
-    L += ["** step 1: push the indenter by the prescribed approach", "*STEP, INC=200", "*STATIC",
-          "0.5, 1.", "*BOUNDARY", *_bcs(d, fmt), f"{ref}, {ri.dof}, {ri.dof}, {_num(-d.push)}", "*END STEP",
-          "** step 2: release the push, the scene's load at full value (load control)",
-          "*STEP, INC=200", "*STATIC", "1., 1.", "*BOUNDARY, OP=NEW", *_bcs(d, fmt),
-          "*CLOAD, AMPLITUDE=FULL", f"{ref}, {ri.dof}, {_num(-d.force)}", *_outputs(d, fmt), "*END STEP"]
+    L += _interactions(d, fmt)
+    steps = d.load_steps()
+    for k, st in enumerate(steps):
+        L += [f"** {st.comment}", f"*STEP, INC={st.max_increments}", "*STATIC", f"{_num(st.increment)}, 1."]
+        if k == 0 or st.new or st.displacements:
+            L += ["*BOUNDARY" + (", OP=NEW" if k > 0 and st.new else ""), *_bcs(d, fmt)]
+            L += [f"{n + 1}, {dof}, {dof}, {_num(v)}" for n, dof, v in st.displacements]
+        if st.loads:
+            L.append("*CLOAD, AMPLITUDE=FULL" if st.full else "*CLOAD")
+            L += [f"{n + 1}, {dof}, {_num(v)}" for n, dof, v in st.loads]
+        if k == len(steps) - 1:
+            L += _outputs(d, fmt)
+        L.append("*END STEP")
     return L
 
 

@@ -14,18 +14,22 @@ from typing import Callable
 import numpy as np
 
 
-def _axis(extent: float, spacing: float) -> np.ndarray:
+def _axis(extent: float, spacing: float, exact_end: bool = False) -> np.ndarray:
     n = int(np.ceil(extent / spacing))
+    if exact_end:                    # the last node at ``extent`` itself (a roller's end), spacing <= ``spacing``
+        return np.concatenate([spacing * np.arange(-2, 0), np.linspace(0.0, extent, n + 1)])
     return spacing * np.arange(-2, n + 1)
 
 
 def layer_3d(gap: Callable[[np.ndarray, np.ndarray], np.ndarray], extent_x: float, extent_y: float,
-             spacing: tuple[float, float], thickness: float) -> tuple[np.ndarray, np.ndarray]:
+             spacing: tuple[float, float], thickness: float,
+             exact_end_y: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """(points (3, N), C3D8 cells (8, M) 0-based) of a layer over [-2s_x, extent_x] x [-2s_y, extent_y] with
     spacings ``spacing`` = (s_x, s_y) (each a fraction of its own semi-axis for an elongated contact): lower face
     z = gap(x, y), upper face z = gap + thickness. Nodes 1-4 of each cell lie on the lower face counter-clockwise
-    seen from above, so face S1 is the lower face with its outward normal pointing down, at the block."""
-    xs, ys = _axis(extent_x, spacing[0]), _axis(extent_y, spacing[1])
+    seen from above, so face S1 is the lower face with its outward normal pointing down, at the block.
+    ``exact_end_y``: the grid ends at y = extent_y exactly (the gap may be infinite beyond it)."""
+    xs, ys = _axis(extent_x, spacing[0]), _axis(extent_y, spacing[1], exact_end_y)
     X, Y = np.meshgrid(xs, ys, indexing="ij")
     Z = gap(X, Y)
     nx, ny = X.shape

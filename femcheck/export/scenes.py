@@ -67,6 +67,55 @@ def _append(points: np.ndarray, more: np.ndarray) -> tuple[np.ndarray, int]:
     return np.concatenate([points, more], axis=1), points.shape[1]
 
 
+def _quarter_block(title: str, spec: BlockSpec, order: int, gap: Callable, in_zone: Callable,
+                   master: tuple[float, float], spacing: tuple[float, float], layer: float, e_star: float,
+                   p_ref: float, load: float, push: float, material: tuple[float, float], info: dict,
+                   exact_end_y: bool = False) -> Deck:
+    """The quarter block of ``spec`` (femcheck's cached Gmsh mesh), C3D4 or C3D10, under a meshed rigid indenter
+    with lower face z = gap(x, y) over [-2 s_x, master_x] x [-2 s_y, master_y] (``exact_end_y``: the last row at
+    master_y exactly, a roller's end), slave faces on z = 0 where ``in_zone(X)``; penalty K = PENALTY E*/h,
+    tension TENSION p_ref; the modelled load ``load`` (N) after a push ``push`` (m)."""
+    mesh = cached_block_quarter(spec)
+    pts = mesh.points
+    tets = elements.orient_tets(pts, mesh.tets)
+    if order == 2:
+        pts, tets = elements.promote(pts, tets, elements.TET_EDGES)
+    n_block = pts.shape[1]
+    L = spec.length_x
+    tiny = 1e-9 * L
+    etype = elements.ELEMENT_TYPE[(3, order)]
+    sel, face = elements.faces_on(pts, tets, elements.TET_FACES, lambda X: (np.abs(X[2]) < tiny) & in_zone(X))
+    ipts, hexes = indenter.layer_3d(gap, master[0], master[1], spacing, layer, exact_end_y=exact_end_y)
+    pts, first = _append(pts, ipts)
+    hexes = hexes + first
+    top_z = float(gap(np.zeros(1), np.zeros(1))[0]) + layer
+    pts, ref = _append(pts, np.array([[0.0, 0.0], [0.0, 0.0], [top_z, top_z]]))
+    rot = ref + 1
+    blocks = [ElementBlock(etype, tets, "EBLOCK", "BLOCK", 1),
+              ElementBlock("C3D8", hexes, "EINDENTER", "INDENTER", 1 + tets.shape[1])]
+    P = pts[:, :n_block]
+    top = _nodes_where(P, lambda X: np.abs(X[2]) < tiny)
+    nsets = {"NBOTTOM": _nodes_where(P, lambda X: X[2] < -spec.depth + tiny),
+             "NXSYM": _nodes_where(P, lambda X: X[0] < tiny),
+             "NYSYM": _nodes_where(P, lambda X: X[1] < tiny),
+             "NTOP": top[in_zone(P[:, top])],
+             "NINDENTER": np.arange(first, first + ipts.shape[1]),
+             "NREF": np.array([ref]), "NROT": np.array([rot])}
+    surfaces = [Surface("SSLAVE", blocks[0].ids[sel], face),
+                Surface("SMASTER", blocks[1].ids, np.ones(hexes.shape[1], dtype=np.int64))]
+    fixed = [Fixed("NBOTTOM", (1, 2, 3)), Fixed("NXSYM", (1,)), Fixed("NYSYM", (2,)), Fixed("NREF", (1, 2)),
+             Fixed("NROT", (1, 2, 3))]
+    h_el = spec.h_contact
+    contact = Contact("SSLAVE", "SMASTER", PENALTY * e_star / h_el, TENSION * p_ref)
+    info = {"order": order, "element": etype, "h_contact": h_el, "mesh_digest": spec.digest(), "block_side": L,
+            "block_nodes": n_block, "block_elements": int(tets.shape[1]), "block_dofs": 3 * n_block,
+            "equivalent_block": {"E": material[0], "nu": material[1]}, "load_modelled": load,
+            "symmetry": "quarter (x = 0, y = 0)", "normal": "z", "master_spacing": list(spacing), **info}
+    return Deck(f"{title}, level {info['level']} (h = {info['h_over_a']:.4g} a), {etype}", 3, pts, blocks, nsets,
+                surfaces, {"BLOCK": material, "INDENTER": material}, fixed, contact,
+                RigidIndenter("NINDENTER", "EINDENTER", ref, rot, 3), push, load, info)
+
+
 def hertz_point(params: dict, level: int, order: int) -> Deck:
     """Point contact (hertz-point, hertz-elliptic): the quarter block of :func:`femcheck.fem.point_contact.solve_level`
     at ``level`` (same BlockSpec, so the same Gmsh mesh from the mesh cache), C3D4 or C3D10."""
@@ -87,53 +136,58 @@ def hertz_point(params: dict, level: int, order: int) -> Deck:
     zone = "ellipse" if big <= 2.0 * small else "box"
     h_el = s.h_contact * small * f
     spec = BlockSpec(L, L, L, zx, zy, h_el, s.grading * f, s.h_max * big * f, zone)
-    mesh = cached_block_quarter(spec)
-    pts = mesh.points
-    tets = elements.orient_tets(pts, mesh.tets)
-    if order == 2:
-        pts, tets = elements.promote(pts, tets, elements.TET_EDGES)
-    n_block = pts.shape[1]
     tiny = 1e-9 * L
-    etype = elements.ELEMENT_TYPE[(3, order)]
     if zone == "ellipse":
         in_zone = lambda X: (X[0] / zx) ** 2 + (X[1] / zy) ** 2 <= SLAVE_ZONE**2 * (1 + 1e-9)
     else:
         in_zone = lambda X: (X[0] <= SLAVE_ZONE * zx + tiny) & (X[1] <= SLAVE_ZONE * zy + tiny)
-    sel, face = elements.faces_on(pts, tets, elements.TET_FACES, lambda X: (np.abs(X[2]) < tiny) & in_zone(X))
-    gap: Callable = gap_function(params)
     spacing = (ax / MASTER_CELLS_PER_A, ay / MASTER_CELLS_PER_A)
-    ipts, hexes = indenter.layer_3d(gap, MASTER_ZONE * zx, MASTER_ZONE * zy, spacing, 0.25 * small)
-    pts, first = _append(pts, ipts)
-    hexes = hexes + first
-    top_z = float(gap(np.zeros(1), np.zeros(1))[0]) + 0.25 * small
-    pts, ref = _append(pts, np.array([[0.0, 0.0], [0.0, 0.0], [top_z, top_z]]))
-    rot = ref + 1
-    blocks = [ElementBlock(etype, tets, "EBLOCK", "BLOCK", 1),
-              ElementBlock("C3D8", hexes, "EINDENTER", "INDENTER", 1 + tets.shape[1])]
-    P = pts[:, :n_block]
-    top = _nodes_where(P, lambda X: np.abs(X[2]) < tiny)
-    nsets = {"NBOTTOM": _nodes_where(P, lambda X: X[2] < -L + tiny),
-             "NXSYM": _nodes_where(P, lambda X: X[0] < tiny),
-             "NYSYM": _nodes_where(P, lambda X: X[1] < tiny),
-             "NTOP": top[in_zone(P[:, top])],
-             "NINDENTER": np.arange(first, first + ipts.shape[1]),
-             "NREF": np.array([ref]), "NROT": np.array([rot])}
-    surfaces = [Surface("SSLAVE", blocks[0].ids[sel], face),
-                Surface("SMASTER", blocks[1].ids, np.ones(hexes.shape[1], dtype=np.int64))]
-    fixed = [Fixed("NBOTTOM", (1, 2, 3)), Fixed("NXSYM", (1,)), Fixed("NYSYM", (2,)), Fixed("NREF", (1, 2)),
-             Fixed("NROT", (1, 2, 3))]
-    contact = Contact("SSLAVE", "SMASTER", PENALTY * e_star / h_el, TENSION * h.p_max)
-    push = 0.5 * ax * ay / np.sqrt(rx * ry)
-    info = {"scene_kind": "point_contact", "level": level, "order": order, "element": etype,
-            "h_contact": h_el, "h_over_a": h_el / small, "mesh_digest": spec.digest(),
-            "block_side": L, "block_nodes": n_block, "block_elements": int(tets.shape[1]),
-            "block_dofs": 3 * n_block, "hertz": {"p_max": h.p_max, "semi_axis_x": ax, "semi_axis_y": ay,
-                                                 "approach": h.approach},
-            "equivalent_block": {"E": block.E, "nu": block.nu}, "load_modelled": 0.25 * load,
-            "symmetry": "quarter (x = 0, y = 0)", "normal": "z", "master_spacing": list(spacing)}
-    return Deck(f"femcheck point contact, level {level} (h = {h_el / small:.4g} a), {etype}", 3, pts, blocks,
-                nsets, surfaces, {"BLOCK": (block.E, block.nu), "INDENTER": (block.E, block.nu)}, fixed,
-                contact, RigidIndenter("NINDENTER", "EINDENTER", ref, rot, 3), push, 0.25 * load, info)
+    info = {"scene_kind": "point_contact", "level": level, "h_over_a": h_el / small,
+            "hertz": {"p_max": h.p_max, "semi_axis_x": ax, "semi_axis_y": ay, "approach": h.approach}}
+    return _quarter_block("femcheck point contact", spec, order, gap_function(params), in_zone,
+                          (MASTER_ZONE * zx, MASTER_ZONE * zy), spacing, 0.25 * small, e_star, h.p_max, 0.25 * load,
+                          0.5 * ax * ay / np.sqrt(rx * ry), (block.E, block.nu), info)
+
+
+# Roller master grid: across the roller a_H/16 (bilinear gap error (1/16)^2/8 = 4.9e-4 of the approach);
+# along it one a_H (a crown's drop varies over the roller length, 45 a_H here, not over a_H)
+ROLLER_CELLS_ACROSS = 16
+
+
+def roller(params: dict, level: int, order: int) -> Deck:
+    """Finite roller (roller-finite, roller-crowned): the quarter block of
+    :func:`femcheck.fem.roller_contact.model` at ``level`` (same BlockSpec: fine box over the footprint, block
+    ``fem_block`` roller lengths), under a rigid roller with the scene's profile (flat-ended or crowned) that ends
+    at the roller's end y = L/2 (sharp edge), C3D4 or C3D10."""
+    from ..fem import roller_contact as fem_roller
+    from ..geometry import profiles
+
+    _level(params, level)
+    if params.get("geometry.tilt", 0.0) != 0.0:
+        raise InputError("geometry.tilt", "the exported deck is a quarter model and needs an aligned roller; "
+                         "allowed: 0")
+    R, Lr, W = params["geometry.radius"], params["geometry.length"], float(params["load.normal"])
+    block = fem_point.equivalent_pair(fem_point._body(params, "roller"), fem_point._body(params, "race"))
+    e_star = block.E / (1.0 - block.nu**2)
+    rr = params.get("geometry.race_radius", np.inf)
+    Rr = hertz.reduced_radius(R, rr)
+    h = hertz.line_contact(W / Lr, Rr, e_star)
+    a = h.half_width
+    gap = profiles.roller(R, Lr, params["geometry.crown"], params.get("geometry.crown_radius"),
+                          params["geometry.flat_length"], params.get("geometry.crown_design_load"), e_star, rr, 0.0)
+    s = fem_roller.settings(params)
+    f = s.ratio**-level
+    hk = s.h_contact * a * f
+    zx, zy = s.contact_zone * a, 0.5 * Lr + a
+    side = s.block * Lr
+    spec = BlockSpec(side, 0.5 * Lr + side, side, zx, zy, hk, s.grading * f, s.h_max * a * f, zone="box")
+    tiny = 1e-9 * side
+    in_zone = lambda X: (X[0] <= zx + tiny) & (X[1] <= zy + tiny)
+    info = {"scene_kind": "roller_contact", "level": level, "h_over_a": hk / a,
+            "hertz": {"p_max": h.p_max, "half_width": a, "line_load": W / Lr}}
+    return _quarter_block("femcheck finite roller", spec, order, gap, in_zone, (MASTER_ZONE * zx, 0.5 * Lr),
+                          (a / ROLLER_CELLS_ACROSS, a), 0.25 * a, e_star, h.p_max, 0.25 * W, a * a / (2.0 * Rr),
+                          (block.E, block.nu), info, exact_end_y=True)
 
 
 def hertz_line(params: dict, level: int, order: int) -> Deck:
@@ -200,7 +254,14 @@ def hertz_line(params: dict, level: int, order: int) -> Deck:
                 contact, RigidIndenter("NINDENTER", "EINDENTER", ref, rot, 2), a * a / (2.0 * R), 0.5 * W, info)
 
 
-BUILDERS: dict[str, Callable[[dict, int, int], Deck]] = {"point_contact": hertz_point, "line_contact": hertz_line}
+def _layered(params: dict, level: int, order: int) -> Deck:
+    from .layered import layered
+
+    return layered(params, level, order)
+
+
+BUILDERS: dict[str, Callable[[dict, int, int], Deck]] = {"point_contact": hertz_point, "line_contact": hertz_line,
+                                                         "roller_contact": roller, "layer_contact": _layered}
 
 
 def build(scene, level: int, order: int) -> Deck:
