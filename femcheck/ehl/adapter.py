@@ -43,7 +43,8 @@ def has_indent(params: dict[str, Any]) -> bool:
 def setup(params: dict[str, Any], grid: int) -> model.Setup:
     g = operating_point(params)
     return model.make_setup(g, params["lubricant.viscosity_law"], params["lubricant.density_law"], grid,
-                            params.get("numerics.levels"), params["numerics.x_start"], params["numerics.x_end"])
+                            params.get("numerics.levels"), params["numerics.x_start"], params["numerics.x_end"],
+                            y_half=params.get("numerics.y_half"))
 
 
 def _levels_grids(params: dict[str, Any]) -> list[int]:
@@ -162,6 +163,7 @@ def run(params: dict[str, Any], progress=None) -> ModelResult:
              "M": g.M, "L": g.L, "alpha_bar": g.alpha_bar, "lambda_bar": g.lam, "b": g.b, "a": g.a,
              "p_hertz": g.p_hertz, "kappa": g.kappa, "load": g.load, "u_mean": g.u_mean,
              "U_moes": g.U_moes, "G": g.G, "W": g.W, "domain": [params["numerics.x_start"], params["numerics.x_end"]],
+             "domain_y_half": float(sol.y[-1]),
              "certificate_grids": used, "refused_grids": refused}
     fields = _line_fields(s, sol)
     if c is not None:

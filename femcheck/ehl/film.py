@@ -49,15 +49,18 @@ class Indent:
 
 
 class FilmOperator:
-    """Elastic deformation and rigid gap on one (n+1) x (n+1) node grid of spacing h starting at (x0, y0)."""
+    """Elastic deformation and rigid gap on one (n+1) x (ny+1) node grid of spacing h (square cells) starting at
+    (x0, y0); ``ny`` = n unless given (an elliptic contact, wider across than along the rolling direction)."""
 
-    def __init__(self, n: int, h: float, x0: float, y0: float, c_el: float, rx_over_ry: float):
-        self.n, self.h, self.c_el = n, h, c_el
+    def __init__(self, n: int, h: float, x0: float, y0: float, c_el: float, rx_over_ry: float,
+                 ny: int | None = None):
+        ny = n if ny is None else ny
+        self.n, self.ny, self.h, self.c_el = n, ny, h, c_el
         self.x = x0 + h * np.arange(n + 1)
-        self.y = y0 + h * np.arange(n + 1)
+        self.y = y0 + h * np.arange(ny + 1)
         self.X, self.Y = np.meshgrid(self.x, self.y, indexing="ij")
         kern = cell_kernel(h)
-        self.conv = DCFFT(kern, (n + 1, n + 1), (h, h), workers=1)
+        self.conv = DCFFT(kern, (n + 1, ny + 1), (h, h), workers=1)
         m = np.arange(6) * h
         self.K0 = kern(m, 0.0 * m)          # K_{m,0}, m = 0..5 (line-matrix coefficients)
         self.K1 = kern(m, h + 0.0 * m)      # K_{m,1}

@@ -1,8 +1,10 @@
 """FAS multigrid with a full-multigrid start for the EHL point contact (seed 004 §2.6.2 eqs 2.25-2.33; Venner &
 Lubrecht 2000; spec §A.5).
 
-Unknowns: the nodal pressures P on (n+1)^2 nodes of a square grid over [x_start, x_end] x [-w/2, w/2]
-(w = x_end - x_start, so h_X = h_Y) and the film constant H0, fixed by the load balance h^2 sum P = 2 pi/(3 kappa).
+Unknowns: the nodal pressures P on (n+1) x (ny+1) nodes over [x_start, x_end] x [-ny h/2, ny h/2] with square
+cells h = (x_end - x_start)/n; ny = n (a square domain, w = x_end - x_start wide across) unless the problem asks
+for another half-width across (``Problem.y_half``: an elliptic contact is 1/kappa times wider across than along the
+rolling direction), then ny is the smallest even multiple of the coarsening that covers it; and the film constant H0, fixed by the load balance h^2 sum P = 2 pi/(3 kappa).
 Grids are nested: n = n_coarsest 2^l. Full approximation scheme: the coarse problem is
     L^H(P^H) = L^H(I P^h) + I (f^h - L^h(P^h)),   h_H^2 sum P^H = h_H^2 sum I P^h + (g^h - h^2 sum P^h)
 with injection I for P, full weighting of the residual where the 3 x 3 fine patch is pressurised (injection
@@ -30,8 +32,9 @@ from .reynolds import faces, operator, time_weights
 @dataclass(frozen=True)
 class Problem:
     """The dimensionless EHL problem: lubricant laws, lambda_bar, deformation factor, Rx/Ry, load 2 pi/(3 kappa),
-    the X range of the domain (the Y range is centred and as wide), an optional indent, the H0 relaxation
-    factor c_h and a first guess of the central film ``hc_start`` (H0 then follows from the Hertz deflection)."""
+    the X range of the domain, the half-width of the centred Y range ``y_half`` (None: as wide as the X range,
+    a square), an optional indent, the H0 relaxation factor c_h and a first guess of the central film
+    ``hc_start`` (H0 then follows from the Hertz deflection)."""
 
     lubricant: Lubricant
     lam: float
@@ -43,6 +46,7 @@ class Problem:
     indent: Indent | None = None
     h0_factor: float = 0.1
     hc_start: float = 0.1
+    y_half: float | None = None
 
     @property
     def load(self) -> float:
@@ -50,13 +54,16 @@ class Problem:
 
 
 class Level:
-    """One grid: nodes, film operator, P, FAS right-hand sides f (field) and g (load), old time levels."""
+    """One grid: nodes (n intervals along X, ny across), film operator, P, FAS right-hand sides f (field) and g
+    (load), old time levels."""
 
-    def __init__(self, n: int, prob: Problem):
+    def __init__(self, n: int, prob: Problem, ny: int | None = None):
         width = prob.x_end - prob.x_start
         self.n, self.h = n, width / n
-        self.film = FilmOperator(n, self.h, prob.x_start, -0.5 * width, prob.c_el, prob.rx_over_ry)
-        self.P = np.zeros((n + 1, n + 1))
+        self.ny = n if ny is None else ny
+        self.film = FilmOperator(n, self.h, prob.x_start, -0.5 * self.ny * self.h, prob.c_el, prob.rx_over_ry,
+                                 self.ny)
+        self.P = np.zeros((n + 1, self.ny + 1))
         self.f = np.zeros_like(self.P)
         self.g = prob.load
         self.rigid = self.film.rigid(prob.indent, 0.0)
@@ -68,6 +75,15 @@ class Level:
         return float(self.h * self.h * (self.P if P is None else P).sum())
 
 
+def cross_intervals(n: int, prob: Problem) -> int:
+    """Intervals across (Y) on a grid of n intervals along X: n for a square domain (``prob.y_half`` None), else the
+    smallest even count whose half-width reaches ``y_half`` (even: a node line on Y = 0)."""
+    if prob.y_half is None:
+        return n
+    h = (prob.x_end - prob.x_start) / n
+    return 2 * max(1, int(np.ceil(prob.y_half / h - 1e-9)))
+
+
 def inject(fine: np.ndarray) -> np.ndarray:
     return fine[::2, ::2].copy()
 
@@ -76,11 +92,11 @@ def pressurised_patch(P: np.ndarray) -> np.ndarray:
     """Interior nodes whose 3 x 3 patch (the node and its eight neighbours) has P > 0."""
     pos = P > 0
     full = np.zeros_like(pos)
-    n = P.shape[0] - 1
-    full[1:n, 1:n] = True
+    n, m = P.shape[0] - 1, P.shape[1] - 1
+    full[1:n, 1:m] = True
     for di in (-1, 0, 1):
         for dj in (-1, 0, 1):
-            full[1:n, 1:n] &= pos[1 + di:n + di, 1 + dj:n + dj]
+            full[1:n, 1:m] &= pos[1 + di:n + di, 1 + dj:m + dj]
     return full
 
 
@@ -102,8 +118,8 @@ def restrict_residual(r: np.ndarray, P: np.ndarray) -> np.ndarray:
 
 
 def prolong_bilinear(c: np.ndarray) -> np.ndarray:
-    n = 2 * (c.shape[0] - 1)
-    f = np.zeros((n + 1, n + 1))
+    n, m = 2 * (c.shape[0] - 1), 2 * (c.shape[1] - 1)
+    f = np.zeros((n + 1, m + 1))
     f[::2, ::2] = c
     f[1::2, ::2] = 0.5 * (c[:-1] + c[1:])
     f[:, 1::2] = 0.5 * (f[:, :-1:2] + f[:, 2::2])
@@ -121,11 +137,11 @@ def _cubic_midpoints(c: np.ndarray, axis: int) -> np.ndarray:
 
 def prolong_cubic(c: np.ndarray) -> np.ndarray:
     """FMG interpolation of a coarse solution (cubic in each direction), clipped at 0."""
-    n = 2 * (c.shape[0] - 1)
+    n, m = 2 * (c.shape[0] - 1), 2 * (c.shape[1] - 1)
     rows = np.zeros((n + 1, c.shape[1]))
     rows[::2] = c
     rows[1::2] = _cubic_midpoints(c, 0)
-    f = np.zeros((n + 1, n + 1))
+    f = np.zeros((n + 1, m + 1))
     f[:, ::2] = rows
     f[:, 1::2] = _cubic_midpoints(rows, 1)
     return np.maximum(f, 0.0)
@@ -148,7 +164,9 @@ class Multigrid:
         if n >> (levels - 1) < 8:
             raise ValueError(f"{levels} levels on n = {n}: the coarsest grid would have fewer than 8 intervals")
         self.prob = prob
-        self.levels = [Level(n >> (levels - 1 - l), prob) for l in range(levels)]
+        nc = n >> (levels - 1)
+        ny_c = cross_intervals(nc, prob)
+        self.levels = [Level(nc << l, prob, ny_c << l) for l in range(levels)]
         self.H0 = 0.0
         self.T = 0.0
         self.coarsest_sweeps, self.pre, self.post, self.gamma = coarsest_sweeps, pre, post, gamma

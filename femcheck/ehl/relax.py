@@ -115,9 +115,9 @@ def relax_colour(P: np.ndarray, f: np.ndarray, state, h: float, ht: float | None
     """One line relaxation of the lines j = colour, colour + 2, ... (interior), P updated in place.
 
     ``state(P)`` returns (H, rho, eps, r) on the full grid for the current P."""
-    n = P.shape[0] - 1
+    n = P.shape[0] - 1                       # intervals along X (the lines); P.shape[1] - 1 across
     ni = n - 1
-    J = np.arange(2 - colour, n, 2)          # colour 1: odd lines, colour 0: even lines
+    J = np.arange(2 - colour, P.shape[1] - 1, 2)   # colour 1: odd lines, colour 0: even lines
     if J.size == 0:
         return
     H, rho, eps, r = state(P)

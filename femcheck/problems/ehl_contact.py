@@ -25,6 +25,7 @@ import numpy as np
 from ..ehl import formulas
 from ..ehl.adapter import INDENT_KEYS, has_indent, operating_point
 from ..ehl.lubricant import DENSITY_LAWS, VISCOSITY_LAWS, roelands_z
+from ..ehl.model import default_y_half
 from ..errors import InputError
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, material_keys, model_keys, tolerance_key
@@ -69,8 +70,11 @@ SCHEMA: dict[str, Key] = {
                                 lo_closed=True, hi_closed=True),
     "numerics.x_start": Key("float", "b", "inlet end of the domain / b", lo=-10.0, hi=-1.5, lo_closed=True,
                             hi_closed=True),
-    "numerics.x_end": Key("float", "b", "outlet end of the domain / b (the domain is square)", lo=1.2, hi=4.0,
+    "numerics.x_end": Key("float", "b", "outlet end of the domain / b", lo=1.2, hi=4.0,
                           lo_closed=True, hi_closed=True),
+    "numerics.y_half": Key("float", "b", "half-width of the domain across / b (default: (x_end - x_start)/2 for a "
+                           "circle, (x_end - x_start)/(2 kappa) for an ellipse, kappa = b/a)", lo=0.5, hi=40.0,
+                           lo_closed=True, hi_closed=True),
     "numerics.snapshots": Key("int", "-", "pressure fields kept per crossing (evenly spaced steps over the whole "
                               "crossing, plus the centred X_D = 0 and the last)", lo=1, hi=10000, lo_closed=True,
                               hi_closed=True),
@@ -103,7 +107,7 @@ DEFAULTS: dict[str, Any] = {
 REQUIRED = ("geometry.Rx", "geometry.Ry", "lubricant.viscosity", "lubricant.pressure_viscosity")
 DEPENDS: dict[str, dict] = {
     "ehl": {"params": ("geometry.", "load.", "materials.", "lubricant.", "kinematics.", "ehl.", "indent.",
-                       "numerics.grid", "numerics.levels", "numerics.refinements", "numerics.x_", "numerics.tol",
+                       "numerics.grid", "numerics.levels", "numerics.refinements", "numerics.x_", "numerics.y_half", "numerics.tol",
                        "numerics.snapshots",
                        "numerics.load_tol"),
             "reference": True},
@@ -149,10 +153,13 @@ def validate(params: dict[str, Any]) -> None:
                                  "the EHL solver supports)")
     if g.b / g.Rx > 0.1:
         raise InputError("load.normal", f"gives b/Rx = {g.b / g.Rx:.3g} > 0.1 (half-space theory fails)")
-    half = 0.5 * (params["numerics.x_end"] - params["numerics.x_start"])
+    half = params.get("numerics.y_half") or default_y_half(g, params["numerics.x_start"], params["numerics.x_end"])
+    if half is None:
+        half = 0.5 * (params["numerics.x_end"] - params["numerics.x_start"])
     if half < 1.2 / g.kappa:
-        raise InputError("numerics.x_start", f"the square domain's half-width {half:g} b does not hold the contact "
-                         f"(a/b = {1 / g.kappa:.3g}); allowed: x_end - x_start >= {2.4 / g.kappa:.3g}")
+        key = "numerics.y_half" if "numerics.y_half" in params else "numerics.x_start"
+        raise InputError(key, f"the domain's half-width across {half:g} b does not hold the contact "
+                         f"(a/b = {1 / g.kappa:.3g}); allowed: >= {1.2 / g.kappa:.3g} b")
 
 
 def ehl(scene: Scene, progress=None) -> ModelResult:
