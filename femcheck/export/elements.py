@@ -59,3 +59,31 @@ def faces_on(points: np.ndarray, cells: np.ndarray, faces: np.ndarray, where) ->
     face, elem = np.nonzero(ok)
     order = np.argsort(elem, kind="stable")
     return elem[order], face[order] + 1
+
+
+def faces_of_nodes(cells: np.ndarray, faces: np.ndarray, on: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(element indices, face numbers 1..) of the faces whose corner nodes are all flagged in ``on`` (N,) bool."""
+    ok = on[cells[faces]].all(axis=1)                          # (f, M)
+    face, elem = np.nonzero(ok)
+    order = np.argsort(elem, kind="stable")
+    return elem[order], face[order] + 1
+
+
+def midside_nodes(linear: np.ndarray, quadratic: np.ndarray, edges: np.ndarray,
+                  pairs: np.ndarray) -> np.ndarray:
+    """The mid-side node of each corner-node pair in ``pairs`` (K, 2), looked up in the quadratic cells
+    (``quadratic`` from :func:`promote` of ``linear`` with ``edges``); -1 where no cell has that edge."""
+    k = linear.shape[0]
+    ends = np.sort(linear[edges].transpose(2, 0, 1).reshape(-1, 2), axis=1)
+    mids = quadratic[k:].T.reshape(-1)
+    table = dict(zip(map(tuple, ends.tolist()), mids.tolist()))
+    return np.array([table.get(tuple(sorted(p)), -1) for p in pairs.tolist()], dtype=np.int64)
+
+
+def with_midside(linear: np.ndarray, quadratic: np.ndarray, edges: np.ndarray, nodes: np.ndarray) -> np.ndarray:
+    """``nodes`` (corner-node indices of a face) and the mid-side nodes of the edges joining two of them."""
+    k = linear.shape[0]
+    on = np.zeros(quadratic.max() + 1, dtype=bool)
+    on[nodes] = True
+    both = on[linear[edges[:, 0]]] & on[linear[edges[:, 1]]]          # (e, M)
+    return np.union1d(nodes, quadratic[k:][both])

@@ -260,8 +260,21 @@ def _layered(params: dict, level: int, order: int) -> Deck:
     return layered(params, level, order)
 
 
+def _srb(params: dict, level: int, order: int) -> Deck:
+    from .srb import srb
+
+    return srb(params, level, order)
+
+
+def _friction(params: dict, level: int, order: int) -> Deck:
+    from .friction import cattaneo
+
+    return cattaneo(params, level, order)
+
+
 BUILDERS: dict[str, Callable[[dict, int, int], Deck]] = {"point_contact": hertz_point, "line_contact": hertz_line,
-                                                         "roller_contact": roller, "layer_contact": _layered}
+                                                         "roller_contact": roller, "layer_contact": _layered,
+                                                         "srb_contact": _srb, "line_tangential": _friction}
 
 
 def build(scene, level: int, order: int) -> Deck:

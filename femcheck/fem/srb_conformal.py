@@ -109,8 +109,9 @@ def _materials(params: dict[str, Any]) -> tuple[Elastic, Elastic]:
     return mats[0], mats[1]
 
 
-def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str, Any]:
-    """One raceway contact on one mesh level; returns the level's quantities and solver statistics."""
+def segment_specs(params: dict[str, Any], contact: str, level: int):
+    """(roller segment spec, ring segment spec, Hertz solution, candidate zone (zx, zy) m) of one raceway contact
+    at mesh ``level``: the meshes of :func:`solve_contact` (also the exported decks')."""
     s = {**FEM_DEFAULTS, **{k: v for k, v in params.items() if k.startswith("numerics.conformal_")}}
     roller, ring = _materials(params)
     g = contact_geometry(params)[contact]
@@ -129,6 +130,17 @@ def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str,
     rspec = RollerSegmentSpec(D, R, half, zx, zy, hc, grading, h_max, stretch)
     gspec = RingSegmentSpec(g["groove_radius"], g["axis_y"], g["axis_z"], g["tilt"], half, depth, depth, zx, zy, hc,
                             grading, h_max, stretch)
+    return rspec, gspec, hz, (zx, zy)
+
+
+def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str, Any]:
+    """One raceway contact on one mesh level; returns the level's quantities and solver statistics."""
+    s = {**FEM_DEFAULTS, **{k: v for k, v in params.items() if k.startswith("numerics.conformal_")}}
+    roller, ring = _materials(params)
+    load = float(params["load.normal"])
+    rspec, gspec, hz, (zx, zy) = segment_specs(params, contact, level)
+    a, b = hz.semi_axis_x, hz.semi_axis_y
+    hc = rspec.h_contact
     t0 = time.perf_counter()
     rm, gm = roller_segment(rspec), ring_segment(gspec)
     mesh_s = time.perf_counter() - t0
