@@ -135,6 +135,23 @@ def from_moes(M: float, L: float, Rx: float, Ry: float, e_prime: float, eta0: fl
     return from_physical(Rx, Ry, e_prime, W * e_prime * Rx**2, eta0, alpha, 0.5 * U * e_prime * Rx / eta0)
 
 
+def at_ellipticity(g: Groups, kappa: float) -> Groups:
+    """The operating point ``g`` with its contact ellipticity changed to ``kappa`` = b/a the way seed 004 varies it
+    (§3.2.2 for dry, §3.3.2 for EHL contacts): b (along the rolling direction) and p_H fixed, so the indent's
+    dimensionless diameter and the dimensionless pressures are unchanged; E', the lubricant and the mean speed kept.
+    Rx/Ry follows from exact Hertz (Johnson 1985 eq 4.39: Ry/Rx = B/A of the ellipse b/a = kappa), Rx from eq 3.1,
+        b E'/(pi p_H) = (4/pi) Ecal Rx/(1 + Rx/Ry),   Ecal = E(1 - kappa^2),
+    and the load from p_H = 3 w/(2 pi a b), w = (2 pi/3) p_H b^2/kappa. Then alpha_bar = alpha p_H is unchanged and
+    lambda_bar = 12 u_m eta0 Rx^2/(b^3 p_H) scales with Rx^2 (at kappa = 0.2: Rx x 0.811, lambda_bar x 0.657);
+    the Moes M, L of the new point differ from g's (they are not the thesis' coordinates of the comparison)."""
+    if not 0.0 < kappa <= 1.0:
+        raise ValueError("kappa = b/a must be in (0, 1]")
+    rho = 1.0 if kappa == 1.0 else 1.0 / hertz._curvature_ratio(kappa)
+    rx = g.b * g.e_prime * (1.0 + rho) / (4.0 * g.p_hertz * ecal(kappa))
+    w = 2.0 * np.pi / 3.0 * g.p_hertz * g.b**2 / kappa
+    return from_physical(rx, rx / rho, g.e_prime, w, g.eta0, g.alpha, g.u_mean)
+
+
 def circular_alpha_bar(M: float, L: float) -> float:
     """alpha_bar = (L/pi) (3M/2)^(1/3) for a circular contact (spec §A.2)."""
     return L / np.pi * (1.5 * M) ** (1.0 / 3.0)
