@@ -3,7 +3,8 @@
 x is the rolling direction. Models: ``analytic`` (exact elliptic Hertz), ``bem`` (half-space boundary
 integral: Love rectangles, DC-FFT or MLMI, preconditioned Polonsky-Keer CG, coarse-to-fine warm start), ``fem``
 (3D FE reference: rigid indenter on a quarter block of the equivalent material, P1 tetrahedra, active set with
-AMG-CG, Richardson over mesh levels; :mod:`femcheck.fem.point_contact`).
+AMG-CG, Richardson over mesh levels; :mod:`femcheck.fem.point_contact`), ``fem_p2`` (the same with quadratic
+tetrahedra and a mortar contact pressure; :mod:`femcheck.fem.point_contact_p2`).
 """
 from __future__ import annotations
 
@@ -23,7 +24,7 @@ from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, fem_mesh_keys, material_keys, model_keys, tolerance_key
 from . import _life_output as life_output
 
-MODEL_NAMES = ("analytic", "bem", "fem")
+MODEL_NAMES = ("analytic", "bem", "fem", "fem_p2", "calculix")
 # a sphere radius or the two radii of curvature: the one given last (an override) wins
 ALTERNATIVES = (("geometry.radius", ("geometry.Rx", "geometry.Ry")),)
 MAX_A_OVER_R = 0.1
@@ -59,6 +60,11 @@ SCHEMA: dict[str, Key] = {
                                 hi=1e8, lo_closed=True, hi_closed=True),
     "numerics.fem_finite_size_check": Key("bool", "-", "solve the coarsest FEM level again on a block twice as "
                                           "large and report the change"),
+    "numerics.p2_levels": Key("int", "-", "FEM P2 mesh levels", lo=1, hi=5, lo_closed=True, hi_closed=True),
+    "numerics.p2_ratio": Key("float", "-", "FEM P2 refinement ratio between levels", lo=1.2, hi=2.0,
+                             lo_closed=True, hi_closed=True),
+    "numerics.p2_h_contact": Key("float", "a_H", "FEM P2 element size in the contact at the coarsest level / "
+                                 "short Hertz semi-axis", lo=0.02, hi=0.5, lo_closed=True, hi_closed=True),
     "numerics.stress_depths": Key("int", "-", "depth levels of the stress field", lo=4, hi=400,
                                   lo_closed=True, hi_closed=True),
     "numerics.stress_depth_max": Key("float", "a_H", "deepest level / Hertz semi-axis x", lo=0.0, hi=20.0,
@@ -90,6 +96,9 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_method": "active_set",
     "numerics.fem_solver": "auto",
     "numerics.fem_penalty": 1e3,
+    "numerics.p2_levels": 3,
+    "numerics.p2_ratio": 2.0**0.5,
+    "numerics.p2_h_contact": 0.125,
     "numerics.stress_depths": 40,
     "numerics.stress_depth_max": 1.5,
 }
@@ -99,6 +108,9 @@ DEPENDS: dict[str, dict] = {
             "reference": True,
             # the coarsest level alone (femcheck.reference_check re-solves it against the stored reference)
             "coarse": {"numerics.fem_levels": 1, "numerics.fem_finite_size_check": False}},
+    "fem_p2": {"params": ("geometry.", "load.", "materials.", "numerics.fem_", "numerics.p2_"),
+               "reference": True,
+               "coarse": {"numerics.p2_levels": 1, "numerics.fem_finite_size_check": False}},
 }
 
 
@@ -228,7 +240,23 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     return fem_point.model(scene.params, progress)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem}
+def fem_p2(scene: Scene, progress=None) -> ModelResult:
+    """3D FE reference with quadratic tetrahedra and a mortar pressure, :func:`femcheck.fem.point_contact_p2.model`."""
+    from ..fem import point_contact_p2
+
+    return point_contact_p2.model(scene.params, progress)
+
+
+
+def calculix(scene: Scene, progress=None) -> ModelResult:
+    """CalculiX (``ccx``) on the scene's exported deck at each mesh level, an independent FE
+    (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed. Selected with --models."""
+    from ..export import calculix_model
+
+    return calculix_model.model(scene, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem, "fem_p2": fem_p2, "calculix": calculix}
 
 
 def load_of(scene: Scene) -> float:
