@@ -1,0 +1,102 @@
+"""Agreement and cost of the FE references: femcheck P1, femcheck P2 and CalculiX (where installed) on the same
+scenes, in one run, each model solved from scratch in its own process so that its CPU time (user + system, the
+process and everything it waits for: ccx included) and peak resident memory are its own.
+
+    flock /tmp/femcheck-cpu.lock python benchmarks/fe_agreement.py [--cases hertz-point:fem,hertz-point:fem_p2]
+
+Per (scene, model): every quantity with its certificate (value, error estimate, certified), the finest level's
+DOFs, CPU seconds and peak memory; each quantity also relative to the scene's analytic model where it has one.
+Writes benchmarks/results/fe_agreement.json and .md. Run it alone: two solves at once share the 2 cores.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+CASES = ("hertz-point:fem", "hertz-point:fem_p2", "hertz-point:calculix", "hertz-line:fem", "hertz-line:calculix")
+OUT = Path(__file__).resolve().parent / "results"
+
+CHILD = r"""
+import json, sys
+import femcheck
+scene, model = sys.argv[1], sys.argv[2]
+r = femcheck.run(scene, {}, models=[model], use_cache=False, rebuild=True)
+m = r.models[model]
+lv = (m.stats.get("levels") or [{}])[-1]
+ref = None
+try:
+    ref = femcheck.run(scene, {}, models=["analytic"]).models["analytic"].quantities
+except Exception:
+    pass
+print("RESULT" + json.dumps({"status": m.status, "error": m.error,
+                             "quantities": m.quantities, "certificates": m.stats.get("certificates", {}),
+                             "n_dofs": lv.get("n_dofs"), "element": m.stats.get("element"),
+                             "analytic": ref}, default=float))
+"""
+
+
+def run_case(scene: str, model: str) -> dict:
+    """Solve one (scene, model) in a child process; its CPU time (user + system, including the processes it
+    waited for, ccx among them) and peak resident memory from os.wait4."""
+    t0 = time.perf_counter()
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        proc = subprocess.Popen([sys.executable, "-c", CHILD, scene, model], stdout=out, stderr=err, text=True)
+        _, status, ru = os.wait4(proc.pid, 0)
+        proc.returncode = status
+        out.seek(0)
+        err.seek(0)
+        stdout, stderr = out.read(), err.read()
+    row = {"scene": scene, "model": model, "wall_s": time.perf_counter() - t0,
+           "cpu_s": ru.ru_utime + ru.ru_stime, "peak_gb": ru.ru_maxrss / 1024**2}
+    line = next((x for x in stdout.splitlines() if x.startswith("RESULT")), None)
+    if line is None:
+        row["error"] = (stderr.strip().splitlines() or ["no output"])[-1]
+        return row
+    row.update(json.loads(line[len("RESULT"):]))
+    return row
+
+
+def table(rows: list[dict]) -> str:
+    out = ["| scene | model | element | quantity | value | vs analytic | estimate | certified | DOFs | CPU s | peak GB |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if r.get("error") or r.get("status", "ok") != "ok":
+            out.append(f"| {r['scene']} | {r['model']} | | {r.get('status', 'failed')}: {r.get('error')} | | | | | | | |")
+            continue
+        ref = r.get("analytic") or {}
+        for q, c in r.get("certificates", {}).items():
+            v = c["value"]
+            rel = f"{v / ref[q] - 1:+.3%}" if q in ref and ref[q] else ""
+            out.append(f"| {r['scene']} | {r['model']} | {r.get('element') or ''} | {q} | {v:.6g} | {rel} | "
+                       f"{c['error_estimate']:.2%} | {'yes' if c['certified'] else 'no'} | {r.get('n_dofs') or ''} | "
+                       f"{r['cpu_s']:.0f} | {r['peak_gb']:.2f} |")
+    return "\n".join(out) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", default=",".join(CASES), help="comma-separated scene:model pairs")
+    ap.add_argument("--out", type=Path, default=OUT)
+    a = ap.parse_args(argv)
+    rows = []
+    for case in a.cases.split(","):
+        scene, model = case.split(":")
+        print(f"{scene} {model} ...", flush=True)
+        rows.append(run_case(scene, model))
+        r = rows[-1]
+        print(f"  {r.get('error') or 'ok'}: CPU {r['cpu_s']:.0f} s, peak {r['peak_gb']:.2f} GB", flush=True)
+    a.out.mkdir(parents=True, exist_ok=True)
+    (a.out / "fe_agreement.json").write_text(json.dumps(rows, indent=1, default=float))
+    (a.out / "fe_agreement.md").write_text(table(rows))
+    print(table(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
