@@ -422,22 +422,23 @@ def map_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
 
 
 @app.command("export")
-def export_cmd(scene: str = typer.Argument(..., help="scene name or TOML path (kinds: point_contact, line_contact)"),
+def export_cmd(scene: str = typer.Argument(..., help="scene name or TOML path (kinds: point_contact, line_contact, "
+                                                  "roller_contact, srb_contact, layer_contact, line_tangential)"),
                fmt: str = typer.Option(..., "--format", help="calculix or abaqus"),
                level: int = typer.Option(0, "--level", help="mesh level of the scene's FE family (0 = coarsest)"),
                order: int = typer.Option(2, "--order", help="element order: 1 linear (C3D4/CPE3), 2 quadratic "
                                                           "(C3D10/CPE6)"),
                out: Path = typer.Option(..., "--out", help="directory the deck is written to"),
                set_: Optional[List[str]] = typer.Option(None, "--set", help="KEY=VALUE override")) -> None:
-    """Write the scene's FE reference as an Abaqus / CalculiX input deck (femcheck's own mesh, rigid indenter,
-    node-to-surface penalty contact, two load steps); the heading says which outputs give the contact
-    pressure."""
+    """Write the scene's FE reference as an Abaqus / CalculiX input deck (femcheck's own mesh, rigid indenter or
+    meshed bodies, node-to-surface penalty contact, load steps under load control); the heading says which
+    outputs give the contact pressure."""
     from .export.write import export
 
     sc = _scene(scene, set_)
     info = export(sc, fmt.lower(), level, order, out)
     out_console.print(f"written {info['deck']}: {info['element']}, level {info['level']} (h = "
-                      f"{info['h_over_a']:.4g} a), {info['block_nodes']} block nodes, {info['block_dofs']} block DOFs;"
+                      f"{info['h_over_a']:.4g} a), {info['block_nodes']} deformable nodes, {info['block_dofs']} DOFs;"
                       f" run: ccx -i {Path(info['deck']).with_suffix('')}", highlight=False, soft_wrap=True)
 
 

@@ -157,7 +157,8 @@ CLI = [sys.executable, "-m", "femcheck.cli", "export"]
     (["hertz-line", "--format", "nastran"], "--format"),
     (["hertz-line", "--format", "calculix", "--order", "3"], "--order"),
     (["hertz-line", "--format", "calculix", "--level", "3"], "--level"),
-    (["srb-normal", "--format", "abaqus"], "SCENE"),
+    (["ehl-smooth", "--format", "abaqus"], "SCENE"),
+    (["carter-2d", "--format", "calculix"], "kinematics.xi"),
     (["hertz-point", "--format", "abaqus", "--set", "load.normal=-1"], "load.normal"),
 ])
 def test_bad_input_exits_2_with_one_line(tmp_path, args, field):

@@ -56,12 +56,14 @@ def read(deck_path: Path) -> dict[str, float | str]:
         out["p_max_nodal_cpress"] = float(p_cpress.max())
     if dim == 3:
         fit = symmetric_contact(X[0], X[1], p)
-        out.update({k: float(fit[k]) for k in ("p_max", "semi_axis_x", "semi_axis_y", "p_max_std")})
+        out.update({k: float(fit[k]) for k in ("p_max", "semi_axis_x", "semi_axis_y", "p_max_std",
+                                                 "semi_axis_x_std", "semi_axis_y_std")})
     else:
         order = np.argsort(X[0])
         x, pp = X[0][order], p[order]
         pk = peak(x, pp, centre=0.0)
-        out.update({"p_max": pk.value, "p_max_std": pk.std, "half_width": edge(x, pp).position})
+        e = edge(x, pp)
+        out.update({"p_max": pk.value, "p_max_std": pk.std, "half_width": e.position, "half_width_std": e.std})
     u = dat[("displacements", "NREF")]
     out["approach"] = float(-u[0, dim])
     out["total_force"] = float(dat[("total force", "NBOTTOM")][0, dim]) * (4.0 if dim == 3 else 2.0)

@@ -1,7 +1,8 @@
 """Plane-strain line contact: a cylinder (elastic or rigid) pressed on a flat elastic block (hertz-line).
 
 Models: ``analytic`` (Hertz + McEwen stresses), ``bem`` (half-plane boundary integral), ``fem`` (Gmsh +
-scikit-fem, mesh levels with Richardson extrapolation).
+scikit-fem, mesh levels with Richardson extrapolation), ``calculix`` (CalculiX on the exported deck, an independent
+FE; selected with --models, skipped where ccx is not installed).
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ from ..scene import (Key, Scene, check_body_pair, elastic, fem_line_mesh_keys, m
                      tolerance_key)
 from . import _life_output as life_output
 
-MODEL_NAMES = ("analytic", "bem", "fem")
+MODEL_NAMES = ("analytic", "bem", "fem", "calculix")
 MAX_A_OVER_R = 0.1   # beyond this the half-space and small-strain assumptions of every model here fail
 
 SCHEMA: dict[str, Key] = {
@@ -49,7 +50,7 @@ DEFAULTS: dict[str, Any] = {
     **life_output.defaults(9.0 / 8.0, depth_max=life_output.LINE_DEPTH_MAX),
     "materials.cylinder.rigid": False,
     "outputs.subsurface_stress": False,
-    "models.run": list(MODEL_NAMES),
+    "models.run": ["analytic", "bem", "fem"],      # calculix: selectable (--models), minutes of ccx
     "models.references": ["analytic", "fem"],
     "numerics.bem_elements": 1024,
     "numerics.bem_domain": 1.25,
@@ -191,7 +192,15 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("fem", quantities=q, stats=stats, fields=fields)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem}
+def calculix(scene: Scene, progress=None) -> ModelResult:
+    """CalculiX (``ccx``) on the scene's exported deck at each mesh level, an independent FE
+    (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed."""
+    from ..export import calculix_model
+
+    return calculix_model.model(scene, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem, "calculix": calculix}
 
 
 def load_of(scene: Scene) -> float:

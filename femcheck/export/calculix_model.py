@@ -1,0 +1,72 @@
+"""The ``calculix`` model of the point-contact (hertz-point) and line-contact (hertz-line) scenes: CalculiX as an
+independent FE code beside femcheck's own.
+
+Where ``ccx`` is on PATH, the scene's deck (:mod:`femcheck.export.scenes`: femcheck's mesh family, rigid indenter,
+node-to-surface penalty contact, push then the load under load control) is written at each of the scene's mesh
+levels (``numerics.fem_levels``, 0 = coarsest), solved by ``ccx`` (one thread), its ``.frd`` / ``.dat`` read
+with femcheck's own reader and the contact quantities taken with femcheck's estimators
+(:func:`femcheck.export.pressure.read`): 3D linear tetrahedra C3D4 with the contact pressure CPRESS (p_max the
+fitted centre value of :func:`femcheck.qoi.symmetric_contact`, semi-axes its power-law edges); 2D quadratic
+triangles CPE6 with -sigma_yy at the contact-face nodes (:func:`femcheck.qoi.peak`, :func:`femcheck.qoi.edge`).
+Element choice (measured, tests/test_export.py): C3D10 is 3.5x the CPU of C3D4 at a/8 (70 s) and only its
+-sigma_zz is usable; CPE6 is < 3 s at every hertz-line level.
+
+Per quantity a convergence certificate over the levels (:func:`femcheck.solvers.convergence.certify_levels`,
+with the estimators' standard errors) -- the certificate's value is the model's quantity. stats carry every
+level (h, DOFs, ccx CPU s, Newton iterations, the raw nodal peak, the indenter's approach, the load carried).
+Where ``ccx`` is absent the model is ``skipped`` with the reason (:data:`femcheck.export.run.MISSING`), never a
+failure of the scene. Decks and results go to a temporary folder removed afterwards.
+"""
+from __future__ import annotations
+
+import math
+import tempfile
+import time
+from pathlib import Path
+
+from ..result import ModelResult
+from ..solvers.convergence import certificate_stats, certify_levels
+from . import deck as deck_writer
+from . import pressure, run, scenes
+
+ORDER = {"point_contact": 1, "line_contact": 2}
+QUANTITIES = {"point_contact": ("p_max", "semi_axis_x", "semi_axis_y"), "line_contact": ("p_max", "half_width")}
+TIMEOUT_S = 1800.0
+
+
+def model(scene, progress=None) -> ModelResult:
+    """CalculiX on ``scene`` (a validated Scene of kind point_contact or line_contact), see the module doc."""
+    if run.ccx() is None:
+        return ModelResult("calculix", "skipped", error=run.MISSING)
+    t0 = time.perf_counter()
+    kind = scene.kind
+    order = ORDER[kind]
+    names = QUANTITIES[kind]
+    n_levels = int(scene["numerics.fem_levels"])
+    levels = []
+    with tempfile.TemporaryDirectory(prefix="femcheck-ccx-") as tmp:
+        for k in range(n_levels):
+            if progress:
+                progress(f"CalculiX level {k + 1}/{n_levels}")
+            d = scenes.build(scene, k, order)
+            path = deck_writer.write_deck(d, "calculix", Path(tmp) / f"{scene.name}-L{k}.inp")
+            r = run.run(path, TIMEOUT_S)
+            if not r.finished:
+                raise RuntimeError(f"ccx did not finish level {k}: {'; '.join(r.errors) or 'no Job finished'}")
+            q = pressure.read(path)
+            levels.append({"h": d.info["h_contact"], "h_over_a": d.info["h_over_a"], "n_dofs": d.info["block_dofs"],
+                           "n_nodes": d.info["block_nodes"], "element": d.info["element"],
+                           **{n: q[n] for n in names}, **{k_: v for k_, v in q.items() if k_.endswith("_std") and math.isfinite(v)},
+                           "p_max_nodal": q["p_max_nodal"], "pressure_from": q["pressure_from"],
+                           "contact_nodes": q["contact_nodes"], "approach": q["approach"],
+                           "total_force": q["total_force"], "ccx_cpu_s": r.cpu_s, "ccx_wall_s": r.wall_s,
+                           "iterations": r.iterations})
+    certs = certify_levels(levels, names)
+    stats = {"code": "CalculiX (ccx, one thread)", "element": levels[-1]["element"],
+             "pressure_from": levels[-1]["pressure_from"],
+             "contact": "node-to-surface, linear penalty K = 1e3 E*/h, rigid indenter, load control",
+             "levels": levels, "ccx_cpu_s": sum(lv["ccx_cpu_s"] for lv in levels)}
+    stats.update(certificate_stats(certs))
+    quantities = {n: c.value for n, c in certs.items()}
+    quantities["total_force"] = levels[-1]["total_force"]
+    return ModelResult("calculix", time_s=time.perf_counter() - t0, quantities=quantities, stats=stats)
