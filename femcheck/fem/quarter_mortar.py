@@ -60,20 +60,35 @@ def face_dofs(solid, mesh: TetMesh, order: int) -> np.ndarray:
 def solve_quarter_mortar(spec: BlockSpec, gap: Gap, block: Elastic, quarter_force: float, candidates: Region,
                          initial: Region, rim: Region, order: int = 2, contact_tol: float = 1e-10,
                          backend: str = "auto") -> MortarContact:
-    """:func:`solve_quarter` with P1 or P2 displacements and the mortar pressure field of
-    :mod:`femcheck.solvers.mortar_indenter`: ``p`` are the pressure field's values at the candidate corner nodes
-    (Pa) and ``lam`` = p w the equivalent nodal forces (N). The stiffness is factorised once
-    (:class:`femcheck.solvers.multirhs.SPDFactor`, ``backend``) and condensed onto the candidate nodes."""
+    """:func:`femcheck.fem.quarter_block.solve_quarter` with P1 or P2 displacements and the mortar pressure field
+    of :mod:`femcheck.solvers.mortar_indenter` (:func:`mortar_on_solid` on the homogeneous quarter block)."""
     t0 = time.perf_counter()
-    times = {}
     mesh = cached_block_quarter(spec)
-    times["mesh_s"] = time.perf_counter() - t0
+    mesh_s = time.perf_counter() - t0
     t = time.perf_counter()
     solid = make_solid(mesh, block, order=order)
-    times["assembly_s"] = time.perf_counter() - t
+    assembly_s = time.perf_counter() - t
+    c = mortar_on_solid(solid, mesh, spec.depth, gap, quarter_force, candidates, initial, rim, order, contact_tol,
+                        backend)
+    c.times.update(mesh_s=mesh_s, assembly_s=assembly_s)
+    c.time_s = time.perf_counter() - t0
+    return c
+
+
+def mortar_on_solid(solid, mesh: TetMesh, depth: float, gap: Gap, quarter_force: float, candidates: Region,
+                    initial: Region, rim: Region, order: int = 2, contact_tol: float = 1e-10,
+                    backend: str = "auto") -> MortarContact:
+    """The rigid indenter with initial gap ``gap(x, y)`` (m) on the quarter block ``solid`` (assembled on
+    ``mesh``, P1 or P2 = ``order``; bottom z = -``depth`` clamped, x = 0 and y = 0 on rollers) carrying
+    ``quarter_force`` (N). ``candidates``, ``initial``, ``rim`` as in :func:`solve_quarter_mortar`. ``p`` are the
+    pressure field's values at the candidate corner nodes (Pa) and ``lam`` = p w the equivalent nodal forces
+    (N). The stiffness is factorised once (:class:`femcheck.solvers.multirhs.SPDFactor`, ``backend``) and
+    condensed onto the candidate nodes."""
+    t0 = time.perf_counter()
+    times = {}
     X = solid.basis.doflocs
-    tiny = 1e-9 * spec.depth
-    fixed = X[2] < -spec.depth + tiny
+    tiny = 1e-9 * depth
+    fixed = X[2] < -depth + tiny
     fixed[0::3] |= X[0, 0::3] < tiny
     fixed[1::3] |= X[1, 1::3] < tiny
     free = np.flatnonzero(~fixed)
@@ -87,7 +102,7 @@ def solve_quarter_mortar(spec: BlockSpec, gap: Gap, block: Elastic, quarter_forc
     rows[cand] = np.arange(cand.size)
     # triangles touching a candidate carry its multiplier; the gap is evaluated there only
     tris = mesh.top[:, (rows[mesh.top] >= 0).any(axis=0)]
-    sub = TetMesh(mesh.points, mesh.tets, tris, spec)
+    sub = TetMesh(mesh.points, mesh.tets, tris, mesh.spec)
     mortar = face_mortar(mesh.points, tris, face_dofs(solid, sub, order), rows, solid.n_dofs,
                          lambda x, y: np.where(np.isfinite(g := gap(x, y)), g, 0.0), order)
     times["mortar_s"] = time.perf_counter() - t
@@ -111,7 +126,12 @@ def solve_quarter_mortar(spec: BlockSpec, gap: Gap, block: Elastic, quarter_forc
     u_nodes = u_all[solid.basis.nodal_dofs]                  # (3, N) at the corner nodes
     # the separation at every face DOF of the candidate triangles (corners and, for P2, mid-sides): the primal
     # field from which the contact edge is located
-    fz = np.unique(face_dofs(solid, sub, order))
+    # (over the candidate zone and half as far again beyond it: the edge fit needs an annulus outside)
+    P = mesh.points
+    near = np.all((P[0][mesh.top] <= 1.5 * xc.max()) & (P[1][mesh.top] <= 1.5 * yc.max()), axis=0)
+    around = TetMesh(mesh.points, mesh.tets, mesh.top[:, near], mesh.spec)
+    fz = np.unique(face_dofs(solid, around, order))
+    fz = fz[np.isfinite(gap(solid.basis.doflocs[0, fz], solid.basis.doflocs[1, fz]))]
     fx, fy = solid.basis.doflocs[0, fz], solid.basis.doflocs[1, fz]
     gap_face = np.stack([fx, fy, gap(fx, fy) - sol.delta - u_all[fz]])
     pressure_all = np.zeros(mesh.n_nodes)

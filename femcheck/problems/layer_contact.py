@@ -47,7 +47,7 @@ from ..qoi import Edge, edges, semi_axes
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 
-MODEL_NAMES = ("bem", "thin_layer", "analytic", "fem")
+MODEL_NAMES = ("bem", "thin_layer", "analytic", "fem", "fem_p2")
 
 
 def _wider(a: Key | None, b: Key | None) -> Key:
@@ -89,11 +89,13 @@ SCHEMA: dict[str, Key] = {
                                      "(femcheck.bem.layered_stress), interface both sides"),
     **{k: _wider(layered_line.FEM_SCHEMA.get(k), layered_point.FEM_SCHEMA.get(k))
        for k in {**layered_line.FEM_SCHEMA, **layered_point.FEM_SCHEMA}},
+    "numerics.p2_levels": Key("int", "-", "FEM P2 mesh levels (ratio sqrt 2; point contact)", lo=1, hi=4,
+                              lo_closed=True, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
     "materials.substrate.rigid": False,
-    "models.run": list(MODEL_NAMES),
+    "models.run": ["bem", "thin_layer", "analytic", "fem"],     # fem_p2 (3D point contact) when asked for
     "models.references": ["bem"],
     "numerics.bem_elements": 1024,
     "numerics.bem_cells": 65,
@@ -105,6 +107,8 @@ REQUIRED = ("geometry.radius",)
 DEPENDS: dict[str, dict] = {
     "fem": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
             "reference": True, "coarse": {"numerics.fem_levels": 1}},
+    "fem_p2": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_", "numerics.p2_"),
+               "reference": True, "coarse": {"numerics.p2_levels": 1}},
 }
 
 LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
@@ -417,8 +421,17 @@ def _fem_one(lp: dict[str, Any], progress=None) -> ModelResult:
     return (layered_line if geometry_of(lp) == "line" else layered_point).model(lp, progress)
 
 
+def _fem_p2_one(lp: dict[str, Any], progress=None) -> ModelResult:
+    """Layered FE reference with quadratic tetrahedra and a mortar pressure (3D point contact only)."""
+    if geometry_of(lp) == "line":
+        raise InputError("models.run", "fem_p2 is the 3D point-contact model; allowed for a line contact: fem")
+    from ..fem import layered_point_p2
+
+    return layered_point_p2.model(lp, progress)
+
+
 SINGLE: dict[str, Callable[..., ModelResult]] = {"bem": _bem_one, "thin_layer": _thin_one, "analytic": _analytic_one,
-                                                 "fem": _fem_one}
+                                                 "fem": _fem_one, "fem_p2": _fem_p2_one}
 
 
 def _model(name: str) -> Callable[..., ModelResult]:
