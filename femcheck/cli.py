@@ -423,7 +423,8 @@ def map_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
 
 @app.command("export")
 def export_cmd(scene: str = typer.Argument(..., help="scene name or TOML path (kinds: point_contact, line_contact, "
-                                                  "roller_contact, srb_contact, layer_contact, line_tangential)"),
+                                                  "roller_contact, srb_contact, layer_contact, line_tangential, "
+                                                  "bearing_load)"),
                fmt: str = typer.Option(..., "--format", help="calculix or abaqus"),
                level: int = typer.Option(0, "--level", help="mesh level of the scene's FE family (0 = coarsest)"),
                order: int = typer.Option(2, "--order", help="element order: 1 linear (C3D4/CPE3), 2 quadratic "

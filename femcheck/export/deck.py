@@ -138,6 +138,8 @@ def deck_lines(d: Deck, fmt: str) -> list[str]:
         if d.dim == 2:
             L.append("1.")                    # plane-strain thickness (m)
     L += _rigid(d, fmt)
+    for eq in d.equations:
+        L += ["*EQUATION", str(len(eq)), ", ".join(f"{n + 1}, {dof}, {_num(c)}" for n, dof, c in eq)]
     L += ["*AMPLITUDE, NAME=FULL", "0., 1., 1., 1."]
     L += _interactions(d, fmt)
     steps = d.load_steps()

@@ -111,7 +111,8 @@ class Deck:
     (N): the load of step 2 on the reference node (the scene's load on the modelled part); ``info``: what the
     writer puts in the heading and the caller reports. ``contacts``, ``rigid`` and ``steps`` add further contact
     pairs, rigid bodies and replace the two default steps (push, then load) when given; ``prints`` the
-    ``.dat`` tables (node set, variable, totals only); ``notes`` extra heading lines."""
+    ``.dat`` tables (node set, variable, totals only); ``notes`` extra heading lines; ``equations`` linear
+    constraints sum c_i u(node_i, dof_i) = 0, each a list of (node column, dof, c), the first term eliminated."""
 
     title: str
     dim: int
@@ -131,6 +132,7 @@ class Deck:
     steps: list[Step] = field(default_factory=list)
     prints: list[tuple[str, str, bool]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    equations: list[list[tuple[int, int, float]]] = field(default_factory=list)
 
     @property
     def n_nodes(self) -> int:

@@ -266,6 +266,12 @@ def _srb(params: dict, level: int, order: int) -> Deck:
     return srb(params, level, order)
 
 
+def _bearing(params: dict, level: int, order: int) -> Deck:
+    from .bearing import bearing
+
+    return bearing(params, level, order)
+
+
 def _friction(params: dict, level: int, order: int) -> Deck:
     from .friction import cattaneo
 
@@ -274,7 +280,8 @@ def _friction(params: dict, level: int, order: int) -> Deck:
 
 BUILDERS: dict[str, Callable[[dict, int, int], Deck]] = {"point_contact": hertz_point, "line_contact": hertz_line,
                                                          "roller_contact": roller, "layer_contact": _layered,
-                                                         "srb_contact": _srb, "line_tangential": _friction}
+                                                         "srb_contact": _srb, "line_tangential": _friction,
+                                                         "bearing_load": _bearing}
 
 
 def build(scene, level: int, order: int) -> Deck:
