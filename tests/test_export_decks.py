@@ -116,6 +116,24 @@ def test_small_decks_solve_and_carry_the_load(decks, name):
 
 
 @needs_ccx
+def test_cattaneo_deck_carries_the_tangential_load_and_the_hertz_peak(decks):
+    """cattaneo-2d CPE3, level 0 (h = a/10): after step 3 the clamped bottom carries W' = 1 MN/m and Q' = 150 kN/m
+    (the scene TOML; .dat 7 digits), and -S22 on the block's top peaks at Hertz's p0 = 1.916 GPa within 1 % (the
+    CPE3 band of tests/test_export.py: +0.38 % measured on hertz-line at a/10; +0.4 % here)."""
+    from femcheck.export.pressure import read
+
+    deck = decks["cattaneo-2d"]
+    if not deck.with_suffix(".frd").exists():
+        assert run.run(deck, timeout=120).finished
+    dat = frd_reader.read_dat(deck.with_suffix(".dat"))
+    rf = dat[("total force", "NBOTTOM")][0]
+    assert rf[2] == pytest.approx(1.0e6, rel=1e-6)
+    assert -rf[1] == pytest.approx(1.5e5, rel=1e-6)
+    h = hertz.line_contact(1.0e6, 0.010, 210e9 / (1 - 0.09) / 2)
+    assert read(deck)["p_max"] == pytest.approx(h.p_max, rel=0.01)
+
+
+@needs_ccx
 def test_rigid_ring_bearing_section_against_rigid_ring_theory(decks):
     """crb-rigid-rings: with rigid rings and the exact 2D roller law, rigid-ring theory is exact for the shaft's
     displacement (the scene's description); CalculiX CPE3 at level 0 (h = b/5.7) measured -1.7 % of it (31.33 um),
