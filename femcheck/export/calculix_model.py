@@ -8,8 +8,9 @@ with femcheck's own reader and the contact quantities taken with femcheck's esti
 (:func:`femcheck.export.pressure.read`): 3D linear tetrahedra C3D4 with the contact pressure CPRESS (p_max the
 fitted centre value of :func:`femcheck.qoi.symmetric_contact`, semi-axes its power-law edges); 2D quadratic
 triangles CPE6 with -sigma_yy at the contact-face nodes (:func:`femcheck.qoi.peak`, :func:`femcheck.qoi.edge`).
-Element choice (measured, tests/test_export.py): C3D10 is 3.5x the CPU of C3D4 at a/8 (70 s) and only its
--sigma_zz is usable; CPE6 is < 3 s at every hertz-line level.
+Element choice (measured, tests/test_export.py): C3D10 at a/8 takes 70 s of ccx (17x C3D4 at a/8, 3.3x C3D4 at
+a/16, the scene's level 0) and only its -sigma_zz is usable (CPRESS +418 %); CPE6 is < 5 s at every hertz-line
+level.
 
 Per quantity a convergence certificate over the levels (:func:`femcheck.solvers.convergence.certify_levels`,
 with the estimators' standard errors) -- the certificate's value is the model's quantity. stats carry every
