@@ -134,6 +134,24 @@ def test_cattaneo_deck_carries_the_tangential_load_and_the_hertz_peak(decks):
 
 
 @needs_ccx
+@pytest.mark.parametrize("name", ["layer-line", "layer-rigid"])
+def test_layered_line_agrees_with_femcheck_fe_within_both_estimates(tmp_path, name):
+    """Two FE codes on the same mesh family (level 0, CPE6 against femcheck's stored P2 reference): p_max agrees
+    within femcheck's error estimate plus twice CalculiX's fitted standard error (measured -0.031 % against 0.065 %
+    + 0.08 % on layer-line, +0.009 % against 0.014 % + 0.03 % on layer-rigid)."""
+    from femcheck.export.pressure import read
+    from femcheck.runner import run as run_scene
+
+    ref = run_scene(name, models=["fem"]).models["fem"]
+    estimate = ref.stats["certificates"]["p_max"]["error_estimate"]
+    deck = Path(export(resolve_scene(name), "calculix", 0, 2, tmp_path)["deck"])
+    assert run.run(deck, timeout=120).finished
+    r = read(deck)
+    tol = estimate + 2.0 * r["p_max_std"] / r["p_max"]
+    assert r["p_max"] == pytest.approx(ref.quantities["p_max"], rel=tol)
+
+
+@needs_ccx
 def test_rigid_ring_bearing_section_against_rigid_ring_theory(decks):
     """crb-rigid-rings: with rigid rings and the exact 2D roller law, rigid-ring theory is exact for the shaft's
     displacement (the scene's description); CalculiX CPE3 at level 0 (h = b/5.7) measured -1.7 % of it (31.33 um),
