@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from skfem import Basis, ElementTetP1, ElementVector, MeshTet, asm
+from skfem import Basis, ElementTetP1, ElementTetP2, ElementVector, MeshTet, asm
 from skfem.models.elasticity import linear_elasticity
 
 from ..analytic import hertz, thin_layer
@@ -95,11 +95,13 @@ class LayeredPointLevel:
     std: dict[str, float] = field(default_factory=dict)   # standard errors of the fitted quantities
 
 
-def assemble_layered_solid(lm: LayeredTetMesh, materials: dict[int, Elastic]) -> Solid:
-    """P1 stiffness (N/m) of the coated block: sum over regions of int C_r eps(u) : eps(v) dx, one-point
-    quadrature (exact for P1). Shared interface nodes make the bond perfect."""
+def assemble_layered_solid(lm: LayeredTetMesh, materials: dict[int, Elastic], order: int = 1) -> Solid:
+    """P1 or P2 (``order``) stiffness (N/m) of the coated block: sum over regions of int C_r eps(u) : eps(v) dx,
+    with the quadrature exact for the order on straight tetrahedra. Shared interface nodes make the bond
+    perfect."""
+    elem, intorder = {1: (ElementTetP1, 1), 2: (ElementTetP2, 2)}[order]
     m = MeshTet(np.ascontiguousarray(lm.mesh.points), np.ascontiguousarray(lm.mesh.tets))
-    basis = Basis(m, ElementVector(ElementTetP1()), intorder=1)
+    basis = Basis(m, ElementVector(elem()), intorder=intorder)
     K = None
     for r, mat in materials.items():
         idx = np.flatnonzero(lm.region == r)

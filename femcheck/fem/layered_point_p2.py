@@ -22,19 +22,16 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from skfem import Basis, ElementTetP2, ElementVector, MeshTet, asm
-from skfem.models.elasticity import linear_elasticity
 
 from ..errors import ConvergenceError, InputError
 from ..materials import Elastic
-from ..meshes.coated import LAYER, SUBSTRATE, LayeredTetMesh, LayerSizing, coated_block_quarter
+from ..meshes.coated import LAYER, SUBSTRATE, LayerSizing, coated_block_quarter
 from ..qoi import centre_value_2d
 from ..qoi_separation import ellipse
 from ..result import ModelResult
 from ..solvers.convergence import certificate_stats, certify_levels
-from ..solvers.elasticity3d import Solid
 from .layered_line import materials_of
-from .layered_point import FEMLayeredPointSettings, reference_radius
+from .layered_point import assemble_layered_solid, reference_radius, settings
 from .quarter_mortar import mortar_on_solid
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y", "approach_block")
@@ -54,21 +51,6 @@ class P2Settings:
     contact_tol: float = 1e-10
 
 
-def assemble_p2(lm: LayeredTetMesh, materials: dict[int, Elastic]) -> Solid:
-    """P2 stiffness (N/m) of the coated block: sum over regions of int C_r eps(u) : eps(v) dx (second-order
-    quadrature, exact for P2 on straight tetrahedra)."""
-    m = MeshTet(np.ascontiguousarray(lm.mesh.points), np.ascontiguousarray(lm.mesh.tets))
-    basis = Basis(m, ElementVector(ElementTetP2()), intorder=2)
-    K = None
-    for r, mat in materials.items():
-        idx = np.flatnonzero(lm.region == r)
-        if idx.size:
-            lam, mu = mat.lame()
-            Kr = asm(linear_elasticity(lam, mu), basis.with_elements(idx))
-            K = Kr if K is None else K + Kr
-    return Solid(basis, K.tocsr(), materials[LAYER])
-
-
 def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float, a_ref: float,
                 level: int, s: P2Settings) -> dict[str, Any]:
     """One level: its quantities, size and cost (SI)."""
@@ -83,7 +65,7 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     mesh_s = time.perf_counter() - t0
     t = time.perf_counter()
     mats = {LAYER: layer} if substrate.rigid else {LAYER: layer, SUBSTRATE: substrate}
-    solid = assemble_p2(lm, mats)
+    solid = assemble_layered_solid(lm, mats, order=2)
     assembly_s = time.perf_counter() - t
 
     def gap(x, y):
@@ -124,12 +106,7 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         if not mat.rigid and mat.nu > NU_MAX_P2:
             raise InputError(name, f"{mat.nu:g} for the P2 FEM; allowed (-1, {NU_MAX_P2}]")
     R, load = float(params["geometry.radius"]), float(params["load.normal"])
-    p1 = FEMLayeredPointSettings(h_contact=params.get("numerics.fem_h_contact", 0.25),
-                                 grading=params.get("numerics.fem_grading", 0.25),
-                                 h_max=params.get("numerics.fem_h_max", 2.0),
-                                 contact_zone=params.get("numerics.fem_contact_zone", 1.3),
-                                 block=params.get("numerics.fem_block", 20.0),
-                                 layer_elements=int(params.get("numerics.fem_layer_elements", 2)))
+    p1 = settings(params)
     s = P2Settings(levels=int(params.get("numerics.p2_levels", 3)), h_contact=p1.h_contact, grading=p1.grading,
                    h_max=p1.h_max, contact_zone=p1.contact_zone, block=p1.block, layer_elements=p1.layer_elements)
     if progress:

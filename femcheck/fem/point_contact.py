@@ -161,11 +161,9 @@ def equivalent_block(params: dict[str, Any]) -> Elastic:
     return equivalent_pair(_body(params, "body1"), _body(params, "body2"))
 
 
-def model(params: dict[str, Any], progress=None) -> ModelResult:
-    """The ``fem`` model of the point-contact scenes from their flat parameters: per quantity a convergence
-    certificate over the ``numerics.fem_levels`` levels (stats["certificates"]: Richardson-extrapolated value
-    when the levels are in the asymptotic range, else the finest level with a two-level error bound); stats
-    carry every level and the finite-size check."""
+def indenter_setup(params: dict[str, Any], name: str) -> tuple[Gap, Elastic, float, float, float]:
+    """(gap, equivalent block, load (N), Hertz semi-axes a_x, a_y (m), which size the meshes) of a point-contact
+    scene for the FE model ``name``; refuses contact ellipses beyond the aspect the meshes can resolve."""
     if "geometry.radius" in params:
         rx = ry = params["geometry.radius"]
     else:
@@ -176,8 +174,17 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
     h = hertz.elliptic_contact(load, rx, ry, block.E / (1.0 - block.nu**2))
     ax, ay = h.semi_axis_x, h.semi_axis_y
     if not 1.0 / MAX_ASPECT <= ay / ax <= MAX_ASPECT:
-        raise InputError("models.run", f"fem needs a contact ellipse with b/a in [{1 / MAX_ASPECT:g}, "
+        raise InputError("models.run", f"{name} needs a contact ellipse with b/a in [{1 / MAX_ASPECT:g}, "
                          f"{MAX_ASPECT:g}]; this one has {ay / ax:.3g}; allowed here: analytic, bem")
+    return gap, block, load, ax, ay
+
+
+def model(params: dict[str, Any], progress=None) -> ModelResult:
+    """The ``fem`` model of the point-contact scenes from their flat parameters: per quantity a convergence
+    certificate over the ``numerics.fem_levels`` levels (stats["certificates"]: Richardson-extrapolated value
+    when the levels are in the asymptotic range, else the finest level with a two-level error bound); stats
+    carry every level and the finite-size check."""
+    gap, block, load, ax, ay = indenter_setup(params, "fem")
     s = settings(params)
     levels = []
     for k in range(s.levels):

@@ -30,16 +30,13 @@ from typing import Any
 
 import numpy as np
 
-from ..analytic import hertz
-from ..errors import InputError
-from ..geometry import profiles
 from ..meshes.block import BlockSpec
 from ..qoi import centre_value_2d
 from ..qoi_separation import ellipse as separation_ellipse
 from ..result import ModelResult
 from ..solvers.convergence import certificate_stats, certify_levels
 from . import export
-from .point_contact import MAX_ASPECT, Gap, equivalent_block
+from .point_contact import Gap, indenter_setup
 from .quarter_mortar import solve_quarter_mortar
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y", "approach_block")
@@ -107,18 +104,7 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem_p2`` model of the point-contact scenes: per quantity a convergence certificate over
     ``numerics.p2_levels`` levels of ratio ``numerics.p2_ratio`` (stats["certificates"]), the finite-size check
     and the half-space approach from it (module docstring)."""
-    if "geometry.radius" in params:
-        rx = ry = params["geometry.radius"]
-    else:
-        rx, ry = params["geometry.Rx"], params["geometry.Ry"]
-    gap = profiles.sphere(rx) if params.get("geometry.profile") == "sphere" else profiles.paraboloid(rx, ry)
-    block = equivalent_block(params)
-    load = params["load.normal"]
-    h = hertz.elliptic_contact(load, rx, ry, block.E / (1.0 - block.nu**2))
-    ax, ay = h.semi_axis_x, h.semi_axis_y
-    if not 1.0 / MAX_ASPECT <= ay / ax <= MAX_ASPECT:
-        raise InputError("models.run", f"fem_p2 needs a contact ellipse with b/a in [{1 / MAX_ASPECT:g}, "
-                         f"{MAX_ASPECT:g}]; this one has {ay / ax:.3g}; allowed here: analytic, bem")
+    gap, block, load, ax, ay = indenter_setup(params, "fem_p2")
     s = settings(params)
     levels = []
     for k in range(s.levels):
