@@ -119,15 +119,13 @@ def _quarter_block(title: str, spec: BlockSpec, order: int, gap: Callable, in_zo
 def hertz_point(params: dict, level: int, order: int) -> Deck:
     """Point contact (hertz-point, hertz-elliptic): the quarter block of :func:`femcheck.fem.point_contact.solve_level`
     at ``level`` (same BlockSpec, so the same Gmsh mesh from the mesh cache), C3D4 or C3D10."""
-    from ..problems.point_contact import gap_function, radii
-
     _level(params, level)
-    rx, ry = radii(params)
-    block = fem_point.equivalent_block(params)
+    # the FE model's own setup (gap, equivalent block, Hertz semi-axes that size the mesh)
+    gap, block, load, ax, ay = fem_point.indenter_setup(params, "export")
+    rx, ry = (params["geometry.radius"],) * 2 if "geometry.radius" in params else (params["geometry.Rx"],
+                                                                                   params["geometry.Ry"])
     e_star = block.E / (1.0 - block.nu**2)
-    load = float(params["load.normal"])
     h = hertz.elliptic_contact(load, rx, ry, e_star)
-    ax, ay = h.semi_axis_x, h.semi_axis_y
     s = fem_point.settings(params)
     f = s.ratio**-level
     big, small = max(ax, ay), min(ax, ay)
@@ -144,7 +142,7 @@ def hertz_point(params: dict, level: int, order: int) -> Deck:
     spacing = (ax / MASTER_CELLS_PER_A, ay / MASTER_CELLS_PER_A)
     info = {"scene_kind": "point_contact", "level": level, "h_over_a": h_el / small,
             "hertz": {"p_max": h.p_max, "semi_axis_x": ax, "semi_axis_y": ay, "approach": h.approach}}
-    return _quarter_block("femcheck point contact", spec, order, gap_function(params), in_zone,
+    return _quarter_block("femcheck point contact", spec, order, gap, in_zone,
                           (MASTER_ZONE * zx, MASTER_ZONE * zy), spacing, 0.25 * small, e_star, h.p_max, 0.25 * load,
                           0.5 * ax * ay / np.sqrt(rx * ry), (block.E, block.nu), info)
 

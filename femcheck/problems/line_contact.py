@@ -6,6 +6,7 @@ FE; selected with --models, skipped where ccx is not installed).
 """
 from __future__ import annotations
 
+from importlib import import_module
 from typing import Any, Callable
 
 import numpy as np
@@ -194,10 +195,13 @@ def fem(scene: Scene, progress=None) -> ModelResult:
 
 def calculix(scene: Scene, progress=None) -> ModelResult:
     """CalculiX (``ccx``) on the scene's exported deck at each mesh level, an independent FE
-    (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed."""
-    from ..export import calculix_model
+    (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed. Imported by name when it runs,
+    so that the stored references of the other models are not keyed on the export code (see
+    :func:`femcheck.problems.point_contact._by_name`)."""
+    return import_module("femcheck.export.calculix_model").model(scene, progress)
 
-    return calculix_model.model(scene, progress)
+
+calculix.__module__ = "femcheck.export.calculix_model"      # its key covers the export code
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem, "calculix": calculix}

@@ -8,6 +8,7 @@ tetrahedra and a mortar contact pressure; :mod:`femcheck.fem.point_contact_p2`).
 """
 from __future__ import annotations
 
+from importlib import import_module
 from typing import Any, Callable
 
 import numpy as np
@@ -240,23 +241,27 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     return fem_point.model(scene.params, progress)
 
 
-def fem_p2(scene: Scene, progress=None) -> ModelResult:
-    """3D FE reference with quadratic tetrahedra and a mortar pressure, :func:`femcheck.fem.point_contact_p2.model`."""
-    from ..fem import point_contact_p2
+def _by_name(module: str, on_params: bool, doc: str) -> Callable[..., ModelResult]:
+    """A model kept in another module and imported only when it runs. Referenced by module name so that the
+    stored references of this kind's other models are not keyed on its code (their keys cover this module and
+    what it imports); its own key is (:func:`femcheck.runner.model_modules` takes the function's module)."""
+    def run(scene: Scene, progress=None) -> ModelResult:
+        m = import_module(module)
+        return m.model(scene.params if on_params else scene, progress)
 
-    return point_contact_p2.model(scene.params, progress)
-
-
-
-def calculix(scene: Scene, progress=None) -> ModelResult:
-    """CalculiX (``ccx``) on the scene's exported deck at each mesh level, an independent FE
-    (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed. Selected with --models."""
-    from ..export import calculix_model
-
-    return calculix_model.model(scene, progress)
+    run.__module__, run.__doc__ = module, doc
+    return run
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem, "fem_p2": fem_p2, "calculix": calculix}
+fem_p2 = _by_name("femcheck.fem.point_contact_p2", True, "3D FE reference with quadratic tetrahedra and a mortar "
+                  "pressure (:mod:`femcheck.fem.point_contact_p2`).")
+calculix = _by_name("femcheck.export.calculix_model", False, "CalculiX (``ccx``) on the scene's exported deck at "
+                    "each mesh level, an independent FE (:mod:`femcheck.export.calculix_model`); skipped where ccx "
+                    "is not installed. Selected with --models.")
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"analytic": analytic, "bem": bem, "fem": fem, "fem_p2": fem_p2,
+                                                 "calculix": calculix}
 
 
 def load_of(scene: Scene) -> float:
