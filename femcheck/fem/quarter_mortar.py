@@ -27,7 +27,7 @@ from .quarter_block import Gap, QuarterContact, Region
 class MortarContact(QuarterContact):
     """:class:`QuarterContact` with ``p`` the pressure field's nodal values (Pa) at the candidate corner nodes,
     ``lam`` = p w their equivalent nodal forces (N), and ``gap_face`` (3, M): x, y (m) and the separation (m)
-    at the face DOFs of the candidate triangles (corners and, for P2, mid-sides)."""
+    at the face DOFs (corners and, for P2, mid-sides) within 1.5 times the candidates' extent in x and y."""
 
     gap_face: np.ndarray | None = None
     order: int = 2
@@ -124,9 +124,9 @@ def mortar_on_solid(solid, mesh: TetMesh, depth: float, gap: Gap, quarter_force:
     u_all[free] = -KinvBt @ sol.lam
     factor.free()
     u_nodes = u_all[solid.basis.nodal_dofs]                  # (3, N) at the corner nodes
-    # the separation at every face DOF of the candidate triangles (corners and, for P2, mid-sides): the primal
-    # field from which the contact edge is located
-    # (over the candidate zone and half as far again beyond it: the edge fit needs an annulus outside)
+    # the separation at the face DOFs (corners and, for P2, mid-sides), the primal field from which the contact
+    # edge is located, over the candidate zone and half as far again beyond it (the edge fit needs an annulus
+    # outside the contact)
     P = mesh.points
     near = np.all((P[0][mesh.top] <= 1.5 * xc.max()) & (P[1][mesh.top] <= 1.5 * yc.max()), axis=0)
     around = TetMesh(mesh.points, mesh.tets, mesh.top[:, near], mesh.spec)
