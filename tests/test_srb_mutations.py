@@ -155,3 +155,63 @@ def test_fe_roller_compression_is_the_sum_of_both_contacts():
     approach_direct = u[0] @ n_in[j0] + u[1] @ n_out[j0]
     assert approach_direct > 0
     assert abs(approach_tables / approach_direct - 1.0) < 1e-5      # (m/Pa ~ 1e-14: no pytest.approx, abs 1e-12)
+
+
+def test_fe_contact_grids_lie_on_the_displaced_rings(monkeypatch):
+    """The FE at the CECT pose (:func:`femcheck.problems._srb_rolling_fem.at_cect_pose`) evaluates the rigid slip
+    and the gap of each contact on that ring's groove where the ring is, as the CECT does (its inner contact
+    surface is the groove of the inner ring displaced by delta along e_z, spec §2.2-2.3). The roller spins at
+    227 rad/s, so its velocity changes by |omega_R| |Delta| along the normal: evaluated on the undisplaced inner
+    groove (delta = 25 um at Table 2's mu = 0.1 state) the inner rigid slip shifts by 2.9e-3 V over the whole
+    patch, and the FE's free-rolling cage speed came out 1.5e-3 below its kinematic value (CECT: +1.0e-5).
+
+    Checked without an FE solve (the compliance and the contact solve are replaced; the FE solver is checked in
+    test_fe_rolling.py): the cell centres of the x = 0 row of both FE grids against the rings' exact surfaces at
+    the CECT state, written here from the spec's implicit forms in the bearing frame (inner: the torus
+    (rho - rho_G)^2 + (a - a_G)^2 = r_I^2 about the displaced axis, groove centre circle at (a_G, rho_G) = 185.6 mm
+    (-sin a, cos a); outer: the sphere |P - O| = r_E). Tolerance 1e-10 m (round-off of 0.1 m coordinates is
+    1e-17 m; the defect is 2.5e-5 m). The x = 0 row only: the grids are prismatic along x (spec §2.3), off the
+    surfaces of revolution by x^2/(2 rho) elsewhere."""
+    from femcheck.fem import srb_rolling as fe_model
+    from femcheck.fem.rolling_compliance import MeshSettings
+    from femcheck.problems import _srb_rolling_fem as fem_adapter
+
+    p = load_scene("srb-rolling", {"numerics.conformal_cells_x": 41, "numerics.conformal_cells_s": 81}).params
+    cp = fem_adapter.cect_pose(kind.solved(p))
+    assert cp["delta"] > 1e-5
+    captured = {}
+
+    class Captured(Exception):
+        pass
+
+    def solve_contacts(tables, inputs, *args, **kw):
+        captured.update(inputs)
+        raise Captured
+
+    monkeypatch.setattr(fe_model, "compliance", lambda *a, **k: None)
+    monkeypatch.setattr(fe_model, "solve_contacts", solve_contacts)
+    with pytest.raises(Captured):
+        fem_adapter.at_cect_pose(p, cp, 9, 17, MeshSettings(0.7, 0.4, 2e-3, 1, 2))
+
+    b = sb.SEED_000
+    a = b.contact_angle
+    D, rI, rE = b.roller_diameter, b.groove_radius_inner, b.groove_radius_outer
+    Y = np.array([0.0, 1.0, 0.0])
+    ex, ey, ez = np.array([1.0, 0.0, 0.0]), np.array([0.0, np.cos(a), np.sin(a)]), np.array([0.0, -np.sin(a), np.cos(a)])
+    C0 = (rE - 0.5 * D) * ez                       # the roller frame's origin (nominal roller centre)
+    Q = np.stack([ex, ey, ez])
+    g = (rE - D + rI) * ez
+    a_g, rho_g = g @ Y, np.hypot(g[0], g[2])
+    shift = cp["delta"] * ez
+    for contact, ci in captured.items():
+        grid = ci.grid
+        k0 = int(np.flatnonzero(grid.x == 0.0)[0])
+        P = C0 + grid.cell_centres()[k0] @ Q        # (ns, 3) in the bearing frame
+        if contact == "inner":
+            d = P - shift
+            ax = d @ Y
+            rho = np.linalg.norm(d - ax[:, None] * Y, axis=1)
+            off = np.hypot(rho - rho_g, ax - a_g) - rI
+        else:
+            off = np.linalg.norm(P, axis=1) - rE
+        assert np.abs(off).max() < 1e-10, (contact, np.abs(off).max())

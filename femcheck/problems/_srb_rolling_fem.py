@@ -12,9 +12,17 @@ the axial offset are the CECT's; the speeds (omega_m, omega_R) are re-balanced s
 (rolling-direction force and moment about the roller axis zero; at the CECT speeds the FE contacts are left with a
 net creep force of order 0.1 mu N). Not a full FE equilibrium: the lateral, radial and tilt/skew equations are not
 re-solved with the FE tables; their residual at the CECT pose is reported.
+
+The rigid slip and the gap of the inner contact are taken on the displaced inner ring's groove (the grid moved
+with the ring by the CECT's delta along e_z, 25.3 um at Table 2's mu = 0.1), the CECT's contact surface; the FE
+compliances stay on the meshes' reference surfaces. The roller spins at 227 rad/s, so its velocity changes by
+omega_R |Delta| along the normal: on the undisplaced groove the inner rigid slip was shifted by 2.87e-3 V
+(6.4e-3 m/s, uniform over the patch), the inner contact rolled freely at a creepage 3e-3 lower than the CECT's,
+and the FE cage speed came out 1.5e-3 below its kinematic value (the CECT's: +1.0e-5).
 """
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
 
 import numpy as np
@@ -27,6 +35,7 @@ from ..fem.rolling_compliance import MeshSettings
 from ..fem.rolling_contact import approach_unknown
 from ..fem.rolling_geometry import Crowned, Grooved, gap, kinematics
 from ..geometry import srb_bearing as sb
+from . import _srb_rolling_out as out
 
 
 def cect_pose(r: EquilibriumResult) -> dict[str, Any]:
@@ -69,6 +78,8 @@ def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: 
     if progress:
         progress(f"fem: compliances of the roller and both ring segments ({nx} x {ns} cells)")
     tables = fe.compliance(p, grids, mesh, progress=progress)
+    # the contact surfaces where the bodies are (module docstring): the inner grid moved with its ring
+    grids = {c: dataclasses.replace(g, centre=g.centre + shift) if c == "inner" else g for c, g in grids.items()}
     gaps = {c: gap(g, roller, rings[c]) for c, g in grids.items()}
     extras = [approach_unknown(c, c, g, g.normal(centres[c]), N, hz[c].approach) for c, g in grids.items()]
 
@@ -116,7 +127,10 @@ def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: 
     xp = -np.sign(float(p["kinematics.inner_ring_speed"]) - float(p["kinematics.outer_ring_speed"])) * sb.X
     q: dict[str, float] = {}
     F, M = np.zeros(3), np.zeros(3)
-    q["omega_m"], q["omega_R"] = float(z[0]), float(z[1])
+    speeds = out.speeds(b, float(p["kinematics.inner_ring_speed"]), float(p["kinematics.outer_ring_speed"]),
+                        float(z[0]), float(z[1]))
+    q["omega_m_deviation"] = speeds["omega_m"] / speeds["omega_m_kinematic"] - 1.0
+    q["omega_R_deviation"] = speeds["omega_R"] / speeds["omega_R_kinematic"] - 1.0
     for c, res in sol.contacts.items():
         q[f"f_x_{c}"] = float(res.force @ xp / (mu * N))
         q[f"f_lat_{c}"] = float(res.creep_force_s / (mu * N))
@@ -129,7 +143,7 @@ def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: 
     g0 = grids["inner"]
     stats = {"iterations": sol.iterations, "residual": sol.residual, "grid": [nx, ns], "dx": g0.dx, "ds": g0.ds,
              "speed_iterations": speed_iterations, "speed_residual": float(np.abs(res0).max()),
-             "omega_m": float(z[0]), "omega_R": float(z[1]), "omega_m_cect": om, "omega_R_cect": orr,
+             "omega_m": float(z[0]), "omega_R": float(z[1]), "omega_m_cect": om, "omega_R_cect": orr, "speeds": speeds,
              "n_dofs": tables.stats.get("n_dofs"), "approaches": {k: float(th) for k, th in sol.theta.items()},
              "equilibrium_residual_force_N": F.tolist(), "equilibrium_residual_moment_Nm": M.tolist(),
              "normal_forces": {c: float(res.normal_force) for c, res in sol.contacts.items()},

@@ -4,7 +4,10 @@ quantities, consistency checks and report fields of a roller equilibrium (spec s
 Conventions (spec §3 "Reporting convention", E10, E11): f = F/(mu N) with N the nominal load; f_x,j = F_j . x_p
 with x_p = x_I the direction in which the roller moves relative to the inner ring; f_lat,j = sum p_s dA / (mu N),
 positive towards the bearing mid-plane; d_y = (C - C0).e_y (the ring approach acts along e_z, so the frictionless
-equilibrium is the nominal pose); tilt beta as it is; skew reported as gamma_p = -gamma.
+equilibrium is the nominal pose); tilt beta as it is; skew reported as gamma_p = -gamma. The speeds are graded by
+their deviation from the rigid-kinematics speeds of seed 000 eqs 2-3 (``omega_m_deviation`` = omega_m / omega_m,o
+- 1, ``omega_R_deviation`` likewise): the creep that the contacts need to carry their forces, 1e-5 and 5e-3 here,
+which a band on the raw speed cannot resolve; the raw speeds are in the stats.
 """
 from __future__ import annotations
 
@@ -69,6 +72,22 @@ def _outer_power(problem: RollerProblem, state: RollerState) -> float:
     return T * problem.omega_outer
 
 
+def speed_deviations(problem: RollerProblem, omega_m: float, omega_R: float) -> dict[str, float]:
+    """omega_m / omega_m,o - 1 and omega_R / omega_R,o - 1 with (omega_m,o, omega_R,o) the speeds of rolling
+    without slip at the nominal points (seed 000 eqs 2-3, :func:`femcheck.geometry.srb_bearing.nominal_speeds`)."""
+    s = speeds(problem.bearing, problem.omega_inner, problem.omega_outer, omega_m, omega_R)
+    return {"omega_m_deviation": s["omega_m"] / s["omega_m_kinematic"] - 1.0,
+            "omega_R_deviation": s["omega_R"] / s["omega_R_kinematic"] - 1.0}
+
+
+def speeds(b: sb.BearingGeometry, omega_inner: float, omega_outer: float, omega_m: float,
+           omega_R: float) -> dict[str, float]:
+    """The raw speeds (rad/s) and the kinematic ones they deviate from (the stats' ``speeds``)."""
+    om0, or0 = sb.nominal_speeds(b, omega_inner, omega_outer)
+    return {"omega_m": float(omega_m), "omega_R": float(omega_R), "omega_m_kinematic": om0,
+            "omega_R_kinematic": or0}
+
+
 def lateral_stiffness(problem: RollerProblem) -> float:
     """N (1/(r_I - R) + 1/(r_E - R)) (N/m): the lateral stiffness of the two conforming pairs (spec §3)."""
     b = problem.bearing
@@ -93,7 +112,7 @@ def quantities(problem: RollerProblem, r: EquilibriumResult) -> dict[str, float]
     q["d_y"] = float((s.centre - b.nominal_centre) @ b.e_y)
     q["tilt"] = float(r.x[2])
     q["skew"] = float(-r.x[3])
-    q["omega_m"], q["omega_R"] = float(r.x[4]), float(r.x[5])
+    q.update(speed_deviations(problem, float(r.x[4]), float(r.x[5])))
     return q
 
 

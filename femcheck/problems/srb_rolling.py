@@ -26,7 +26,8 @@ Models:
 Quantities (Table 2's signs and normalisation, :mod:`femcheck.problems._srb_rolling_out`): ``f_x_inner``,
 ``f_x_outer``, ``f_lat_inner``, ``f_lat_outer``, ``f_lat_sum`` (-, F/(mu N)), ``d_y`` (m), ``tilt``, ``skew``
 (rad; skew = gamma_p = -gamma), ``friction_power_inner|outer`` (W), ``adhesion_fraction_inner|outer``,
-``omega_m``, ``omega_R`` (rad/s).
+``omega_m_deviation``, ``omega_R_deviation`` (-: omega / omega_kinematic - 1, seed 000 eqs 2-3; the raw speeds in
+rad/s are in ``stats["speeds"]``).
 """
 from __future__ import annotations
 
@@ -54,7 +55,7 @@ MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem")
 DESIGN_QUANTITIES = ("f_lat_sum", "f_lat", "f_x", "d_y")
 # Table 2's normalisation: forces divided by mu N
 UNITS = {"f_x": "- (F / mu N)", "f_lat": "- (F / mu N)", "d_y": "m", "tilt": "rad", "skew": "rad",
-         "omega_m": "rad/s", "omega_R": "rad/s"}
+         "omega_m_deviation": "- (omega_m / omega_m,o - 1)", "omega_R_deviation": "- (omega_R / omega_R,o - 1)"}
 TABLE_2_QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y")
 
 SCHEMA: dict[str, Key] = {
@@ -239,6 +240,7 @@ def cect(scene: Scene, progress=None) -> ModelResult:
              "n_elements": 2 * p["numerics.conformal_cells_x"] * p["numerics.conformal_cells_s"],
              "normal_forces": {c: r.state.contacts[c].result.normal_force for c in sb.CONTACTS},
              "time_s": r.time_s,
+             "speeds": out.speeds(pr.bearing, pr.omega_inner, pr.omega_outer, float(r.x[4]), float(r.x[5])),
              "solver": "damped Newton/Broyden (FD Jacobian) on 7 unknowns (pose, speeds, ring approach); "
                        "conformal CECT per contact"}
     return ModelResult("cect", quantities=q, stats=stats, fields=out.fields(r.state))
@@ -265,7 +267,7 @@ def _strip(scene: Scene, name: str, s0: float) -> ModelResult:
     for c in sb.CONTACTS:
         q[f"friction_power_{c}"] = float(hc.contacts[c].frictional_power)
         q[f"adhesion_fraction_{c}"] = float(hc.contacts[c].adhesion_fraction)
-    q["omega_m"], q["omega_R"] = float(hc.omega_m), float(hc.omega_R)
+    q.update(out.speed_deviations(pr, float(hc.omega_m), float(hc.omega_R)))
     fields = {}
     for c in sb.CONTACTS:
         sc = hc.contacts[c]
@@ -273,6 +275,8 @@ def _strip(scene: Scene, name: str, s0: float) -> ModelResult:
                        sc.force_per_width})
     return ModelResult(name, quantities=q, fields=fields,
                        stats={"iterations": hc.iterations, "residual": hc.residual, "s0": s0,
+                              "speeds": out.speeds(pr.bearing, pr.omega_inner, pr.omega_outer, float(hc.omega_m),
+                                                  float(hc.omega_R)),
                               "zero_slip": {c: hc.contacts[c].zero_slip for c in sb.CONTACTS},
                               "solver": "strip theory H+C, Newton on (omega_m, omega_R)"})
 
@@ -344,8 +348,8 @@ def fem(scene: Scene, progress=None) -> ModelResult:
         mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, 2e-3, 1, 2)
         o = _srb_rolling_fem.at_cect_pose(p, cp, nx, ns, mesh, progress, half_x=1.35 * nx / (nx0 * f))
         levels.append({"level": k, "nx": nx, "ns": ns, "h": o["stats"]["dx"], **o["quantities"],
-                       **{key: o["stats"][key] for key in ("ds", "n_dofs", "iterations", "residual",
-                                                          "speed_iterations", "speed_residual",
+                       **{key: o["stats"][key] for key in ("ds", "n_dofs", "iterations", "residual", "omega_m",
+                                                          "omega_R", "speed_iterations", "speed_residual",
                                                           "equilibrium_residual_force_N")}})
     names = list(o["quantities"])
     certs = {q: certify([lv["h"] for lv in levels], [lv[q] for lv in levels]) for q in names}
