@@ -17,7 +17,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 EXPONENT = 1.5      # separation ~ distance^(3/2) outside a square-root pressure edge (Johnson eq. 3.42b)
-EXCLUDE = 1.5       # element sizes left out beyond the rough edge (ellipse)
+EXCLUDE = 1.0       # element sizes left out beyond the edge (ellipse); beyond a rough edge, half an element more
 OUTER = 1.3         # outer elliptic radius of the annulus, in rough semi-axes, shifted out with the exclusion
 
 
@@ -27,19 +27,31 @@ def ellipse(X: np.ndarray, Y: np.ndarray, g: np.ndarray, rough_x: float, rough_y
     (``X``, ``Y``) (m; a quarter model's face DOFs, x, y >= 0), fitted over the whole annulus around the edge.
 
     Model: t = sqrt(x^2/A^2 + y^2/B^2) - 1 (the elliptic radial distance from the edge),
-    g = max(t, 0)^(3/2) (c0 + c1 t + c2 t^2 + c3 t^3 + (d0 + d1 t) cos 2theta), the amplitude varying around the
-    outline to first order in cos 2theta. Samples with elliptic radius (in the
-    rough semi-axes ``rough_x``, ``rough_y``, m) between 1 + e and ``outer`` + e, e = ``exclude`` h / rough: the first
-    ``exclude`` element sizes ``h`` (m) beyond the rough edge are left out, because there the discrete surface
-    departs from the 3/2 power law (the weak contact conditions let the last active nodes overlap slightly and
-    lift the surface just outside: hertz-point P2 at a/16 carries +4e-4 of the approach there, which moves
-    the fitted edge by -0.1 % of a). The exclusion shrinks with h, so the estimate is consistent. On the exact
-    Hertz separation sampled as densely as the face DOFs of P2 elements of a/n, the annulus placed from a rough
-    edge half an element inside, the bias is -4.6e-4 / -1.3e-4 / -4.9e-5 / -2.7e-5 of a at n = 4 / 8 / 16 / 32
-    (in t = x^2/A^2 + y^2/B^2 - 1 with one term fewer it was 5e-4 to 2e-3).
+    g = max(t, 0)^(3/2) (c0 + c1 t + c2 t^2 + (d0 + d1 t) cos 2theta), the amplitude varying around the outline
+    to first order in cos 2theta. Samples with elliptic radius between 1 + e and ``outer`` + e (in the edge's
+    semi-axes), e = ``exclude`` h / semi-axis: the first ``exclude`` element sizes ``h`` (m) beyond the edge are
+    left out, because there the discrete surface departs from the 3/2 power law (the weak contact conditions let
+    the last active nodes overlap slightly and lift the surface just outside: hertz-point P2 at a/16 carries
+    +4e-4 of the approach there, which moves the fitted edge by -0.1 % of a). The exclusion shrinks with h, so
+    the estimate is consistent. Two passes: the annulus placed from the rough edge (``rough_x``, ``rough_y``, m:
+    the last loaded nodes, up to an element or so inside the edge) with half an element more excluded, then
+    from the first fit's edge. On the exact Hertz separation sampled as densely as the face DOFs of P2 elements
+    of a/n, the bias is -4.9e-4 / -1.4e-4 / -5.1e-5 / -2.8e-5 of a at n = 4 / 8 / 16 / 32, whether the rough
+    edge is on the edge or 1.5 elements inside, on one axis or both (in t = x^2/A^2 + y^2/B^2 - 1 with one term
+    fewer it was 5e-4 to 2e-3).
     Returns ``semi_axis_x``, ``semi_axis_y``, their ``_std`` (m, from the fit's covariance), ``points`` and
     ``misfit``."""
     X, Y, g = (np.asarray(v, dtype=float).ravel() for v in (X, Y, g))
+    # two passes: the annulus is placed from the rough edge, then again from the first fit, so that the
+    # exclusion is measured from the edge itself even where the rough edge is an element off on one axis (a
+    # structured face puts the last loaded node a whole element inside on one axis and on the edge on the other)
+    out = _fit_annulus(X, Y, g, rough_x, rough_y, h, exclude + 0.5, outer)
+    return _fit_annulus(X, Y, g, out["semi_axis_x"], out["semi_axis_y"], h, exclude, outer)
+
+
+def _fit_annulus(X: np.ndarray, Y: np.ndarray, g: np.ndarray, rough_x: float, rough_y: float, h: float,
+                 exclude: float, outer: float):
+    """One fit of :func:`ellipse` over the annulus placed from (``rough_x``, ``rough_y``)."""
     x, y = np.abs(X) / rough_x, np.abs(Y) / rough_y
     rho = np.hypot(x, y)
     lo = 1.0 + exclude * h / min(rough_x, rough_y)
@@ -61,11 +73,14 @@ def ellipse(X: np.ndarray, Y: np.ndarray, g: np.ndarray, rough_x: float, rough_y
         c, *_ = np.linalg.lstsq(Phi, gs, rcond=None)
         return Phi @ c - gs
 
-    # start from the best common scale of the rough semi-axes: the kink of max(t, 0) gives the full fit local
-    # minima far from the edge (-17 % of a from a start at the rough edge)
-    scales = np.linspace(0.9, 1.15, 51) ** 2
-    k0 = scales[int(np.argmin([np.sum(reduced([k, k]) ** 2) for k in scales]))]
-    vp = least_squares(reduced, [k0, k0], x_scale="jac", method="lm")
+    # start from the best pair of scales on a grid of edges from half an element inside the rough edge (the
+    # last loaded node) to 2.5 elements beyond it, in steps of h/10: the misfit has a valley about an element
+    # wide at the edge and falls again towards edges far inside, where a polynomial in t fits the annulus
+    # nearly as well (minima at -17 % to -28 % of a from a start at, or a common scale of, the rough edge)
+    scales = np.linspace(1.0 - 0.5 * h / min(rough_x, rough_y), 1.0 + 2.5 * h / min(rough_x, rough_y), 31) ** 2
+    cost = [[np.sum(reduced([kx, ky]) ** 2) for ky in scales] for kx in scales]
+    i, j = np.unravel_index(int(np.argmin(cost)), (scales.size, scales.size))
+    vp = least_squares(reduced, [scales[i], scales[j]], x_scale="jac", method="lm")
     c_lin, *_ = np.linalg.lstsq(basis(vp.x), gs, rcond=None)
 
     def model(q):
@@ -85,4 +100,3 @@ def ellipse(X: np.ndarray, Y: np.ndarray, g: np.ndarray, rough_x: float, rough_y
     out["points"] = int(gs.size)
     out["misfit"] = float(np.sqrt(np.mean(res**2)))
     return out
-

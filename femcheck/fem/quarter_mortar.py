@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
 from ..materials import Elastic
-from ..meshes.block import BlockSpec, TetMesh, cached_block_quarter
+from ..meshes.block import TetMesh
 from ..solvers.elasticity3d import make_solid
 from ..solvers.mortar_indenter import face_mortar, schur_active_set
 from ..solvers.multirhs import SPDFactor
@@ -57,18 +58,19 @@ def face_dofs(solid, mesh: TetMesh, order: int) -> np.ndarray:
     return np.vstack([corners, np.stack(mids)])
 
 
-def solve_quarter_mortar(spec: BlockSpec, gap: Gap, block: Elastic, quarter_force: float, candidates: Region,
-                         initial: Region, rim: Region, order: int = 2, contact_tol: float = 1e-10,
+def solve_quarter_mortar(mesher: Callable[[], TetMesh], gap: Gap, block: Elastic, quarter_force: float,
+                         candidates: Region, initial: Region, rim: Region, order: int = 2, contact_tol: float = 1e-10,
                          backend: str = "auto") -> MortarContact:
     """:func:`femcheck.fem.quarter_block.solve_quarter` with P1 or P2 displacements and the mortar pressure field
-    of :mod:`femcheck.solvers.mortar_indenter` (:func:`mortar_on_solid` on the homogeneous quarter block)."""
+    of :mod:`femcheck.solvers.mortar_indenter` (:func:`mortar_on_solid` on the homogeneous quarter block that
+    ``mesher()`` returns, its ``spec`` giving the block's depth)."""
     t0 = time.perf_counter()
-    mesh = cached_block_quarter(spec)
+    mesh = mesher()
     mesh_s = time.perf_counter() - t0
     t = time.perf_counter()
     solid = make_solid(mesh, block, order=order)
     assembly_s = time.perf_counter() - t
-    c = mortar_on_solid(solid, mesh, spec.depth, gap, quarter_force, candidates, initial, rim, order, contact_tol,
+    c = mortar_on_solid(solid, mesh, mesh.spec.depth, gap, quarter_force, candidates, initial, rim, order, contact_tol,
                         backend)
     c.times.update(mesh_s=mesh_s, assembly_s=assembly_s)
     c.time_s = time.perf_counter() - t0
@@ -106,18 +108,16 @@ def mortar_on_solid(solid, mesh: TetMesh, depth: float, gap: Gap, quarter_force:
     mortar = face_mortar(mesh.points, tris, face_dofs(solid, sub, order), rows, solid.n_dofs,
                          lambda x, y: np.where(np.isfinite(g := gap(x, y)), g, 0.0), order)
     times["mortar_s"] = time.perf_counter() - t
-    t = time.perf_counter()
     factor = SPDFactor(solid.K[free][:, free], backend=backend, tol=1e-8)
     Bf = mortar.B[:, free].tocsr()
     KinvBt = factor.solve(Bf.T.toarray())
     C = Bf @ KinvBt
     C = 0.5 * (C + C.T)
     times["factor_s"], times["condense_s"] = factor.stats.factor_s, factor.stats.solve_s
-    t = time.perf_counter()
-    sol = schur_active_set(C, mortar.w, mortar.h, quarter_force, initial(mesh.points[0, cand], mesh.points[1, cand]),
-                           tol=contact_tol)
-    times["contact_s"] = time.perf_counter() - t
     xc, yc = mesh.points[0, cand], mesh.points[1, cand]
+    t = time.perf_counter()
+    sol = schur_active_set(C, mortar.w, mortar.h, quarter_force, initial(xc, yc), tol=contact_tol)
+    times["contact_s"] = time.perf_counter() - t
     if sol.active[rim(xc, yc)].any():
         raise RuntimeError("FEM contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
     u_all = np.zeros(solid.n_dofs)

@@ -66,6 +66,10 @@ SCHEMA: dict[str, Key] = {
                              lo_closed=True, hi_closed=True),
     "numerics.p2_h_contact": Key("float", "a_H", "FEM P2 element size in the contact at the coarsest level / "
                                  "short Hertz semi-axis", lo=0.02, hi=0.5, lo_closed=True, hi_closed=True),
+    "numerics.p2_zone": Key("float", "a_H", "FEM P2 structured zone (cubes of the contact element size) / Hertz "
+                            "semi-axes, along x and y", lo=1.3, hi=3.0, lo_closed=True, hi_closed=True),
+    "numerics.p2_zone_depth": Key("float", "a_H", "FEM P2 structured zone depth / short Hertz semi-axis", lo=0.1,
+                                  hi=3.0, lo_closed=True, hi_closed=True),
     "numerics.stress_depths": Key("int", "-", "depth levels of the stress field", lo=4, hi=400,
                                   lo_closed=True, hi_closed=True),
     "numerics.stress_depth_max": Key("float", "a_H", "deepest level / Hertz semi-axis x", lo=0.0, hi=20.0,
@@ -98,8 +102,10 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_solver": "auto",
     "numerics.fem_penalty": 1e3,
     "numerics.p2_levels": 3,
-    "numerics.p2_ratio": 2.0**0.5,
+    "numerics.p2_ratio": 1.5,
     "numerics.p2_h_contact": 0.125,
+    "numerics.p2_zone": 1.5,
+    "numerics.p2_zone_depth": 0.5,
     "numerics.stress_depths": 40,
     "numerics.stress_depth_max": 1.5,
 }
