@@ -17,8 +17,8 @@ Tolerances, from the printed digits and the measured differences (all with the e
   19.5923 um; Example 1, delta_r 15.11020 against 15.1101 um). Band 5e-5 relative: the TS's rounded 1.48, or any
   error in the osculations or the ellipse ratio, moves them by 3e-4 or more.
 - L10r is printed to 8 significant digits; ours differ by 0.0002-0.0067 % (radial, axial and combined cases) and
-  0.022 % (the pure moment, Example 6). The remaining differences are below what we can attribute (MASTA's own
-  evaluation of the elliptic integrals or element ratings is not published). Band 1e-4, 3e-4 for Example 6: the
+  0.022 % (the pure moment, Example 6). We cannot attribute these remaining differences (MASTA's own evaluation
+  of the elliptic integrals or element ratings is not published). Band 1e-4, 3e-4 for Example 6: the
   TS's L10r exponent -9/10 replaced by the roller's -8/9 moves L10r by 9-15 %, the rotating ring's equivalent-load
   exponent 3 replaced by the roller's 4 by 12-33 % (benchmarks/mutations: iso-ball-*).
 The roller case of the spec §3.6 D (delta_r = 3.5023 um, Q = 683.56 / 316.44 N) is asserted in
