@@ -29,7 +29,8 @@ from typing import Any
 
 import numpy as np
 from scipy.sparse import bmat, csc_matrix
-from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector, FacetBasis, LinearForm, MeshTri, asm
+from skfem import (Basis, BilinearForm, ElementTriP1, ElementTriP2, ElementVector, FacetBasis, LinearForm,
+                   MeshTri, asm)
 from skfem.models.elasticity import linear_elasticity
 
 from ..analytic import hertz, thin_layer
@@ -39,6 +40,7 @@ from ..result import ModelResult
 from ..scene import Key
 from ..solvers import frictionless
 from ..qoi import edge, peak
+from ..qoi_separation import radial as separation_edge
 from ..solvers.convergence import certificate_stats, certify_levels
 from ..solvers.elasticity2d import MIXED_ABOVE_NU, Body, CondensedBody, _deviatoric_part, _divergence, _mass
 from ..meshes.coated import LAYER, SUBSTRATE, LayeredTriMesh, LayerSizing, coated_block_half
@@ -63,6 +65,7 @@ class FEMLayeredLineSettings:
     order: int = 2
     formulation: str = "auto"
     tol: float = 1e-9
+    geometry: str = "plane"        # "plane" (strain, per unit length) or "axisymmetric" (x = r, a sphere)
 
 
 @dataclass
@@ -95,8 +98,24 @@ def inverse_lame_lambda(m: Elastic) -> float:
     return (1.0 + m.nu) * (1.0 - 2.0 * m.nu) / (m.E * m.nu)
 
 
+def axisymmetric_elasticity(lam: float, mu: float) -> BilinearForm:
+    """Axisymmetric linear elasticity (x = r, y = z; N/m for the whole ring): int (lam tr e(u) tr e(v)
+    + 2 mu (e_rr e_rr + e_zz e_zz + e_tt e_tt) + mu g_rz g_rz) 2 pi r dr dz, with e_rr = du_r/dr, e_zz = du_z/dz,
+    the hoop strain e_tt = u_r / r and g_rz = du_r/dz + du_z/dr (Zienkiewicz & Taylor, The Finite Element Method,
+    vol. 1, 6th ed., §9.2, eqs 9.3-9.5). The quadrature points lie inside the triangles, never on the axis."""
+    @BilinearForm
+    def form(u, v, w):
+        r = w.x[0]
+        eu = (u.grad[0][0], u.grad[1][1], u[0] / r)
+        ev = (v.grad[0][0], v.grad[1][1], v[0] / r)
+        gu, gv = u.grad[0][1] + u.grad[1][0], v.grad[0][1] + v.grad[1][0]
+        normal = lam * sum(eu) * sum(ev) + 2.0 * mu * sum(a * b for a, b in zip(eu, ev))
+        return 2.0 * np.pi * r * (normal + mu * gu * gv)
+    return form
+
+
 def assemble_layered(lmesh: LayeredTriMesh, materials: dict[int, Elastic], order: int = 2,
-                     formulation: str = "auto") -> tuple[Body, dict[str, str]]:
+                     formulation: str = "auto", geometry: str = "plane") -> tuple[Body, dict[str, str]]:
     """Plane-strain system of the coated block: sum over regions r of int C_r eps(u) : eps(v) dx (N/m).
 
     A region in the ``mixed`` form (``auto``: nu > MIXED_ABOVE_NU; needs P2) contributes instead
@@ -104,11 +123,13 @@ def assemble_layered(lmesh: LayeredTriMesh, materials: dict[int, Elastic], order
         [ int_r q_r div u             -int_r p_r q_r / lambda_r ]
     with its own continuous P1 pressure p_r on the region's nodes (appended after the displacement DOFs).
     Returns the :class:`Body` (displacement DOFs first) and the formulation used per region.
+    ``geometry`` "axisymmetric": :func:`axisymmetric_elasticity`, displacement form only.
     """
     if order not in _ELEMENTS:
         raise InputError("numerics.fem_order", f"{order}; allowed: 1, 2")
     m = MeshTri(lmesh.mesh.points, lmesh.mesh.triangles)
-    intorder = max(1, 2 * (order - 1))
+    # the axisymmetric integrand (weight r, hoop term u_r v_r / r) is not a polynomial of the element's degree
+    intorder = max(1, 2 * (order - 1)) if geometry == "plane" else 2 * order + 1
     basis = Basis(m, ElementVector(_ELEMENTS[order]()), intorder=intorder)
     K = None
     constraint_rows, constraint_diag = [], []
@@ -126,10 +147,14 @@ def assemble_layered(lmesh: LayeredTriMesh, materials: dict[int, Elastic], order
                              "Taylor-Hood form, which needs element order 2")
         if form == "displacement" and mat.nu >= 0.5:
             raise InputError("numerics.fem_formulation", f"nu = 0.5 in the {names[r]} needs the mixed form")
+        if form == "mixed" and geometry != "plane":
+            raise InputError(f"{'layer' if r == LAYER else 'materials.substrate'}.nu",
+                             f"{mat.nu:g} in the axisymmetric FE; allowed (-1, {MIXED_ABOVE_NU:g}] (no mixed "
+                             "axisymmetric form)")
         rb = basis.with_elements(idx)
         if form == "displacement":
             lam, mu = mat.lame()
-            Kr = asm(linear_elasticity(lam, mu), rb)
+            Kr = asm(linear_elasticity(lam, mu) if geometry == "plane" else axisymmetric_elasticity(lam, mu), rb)
         else:
             Kr = mat.shear_modulus * asm(_deviatoric_part, rb)
             pb = rb.with_element(ElementTriP1())
@@ -155,24 +180,29 @@ def _facet_dofs(basis: Basis, facets: np.ndarray, component: int) -> np.ndarray:
     return dofs[np.argsort(basis.doflocs[0, dofs], kind="stable")]
 
 
-def tributary_lengths(basis: Basis, facets: np.ndarray, dofs: np.ndarray) -> np.ndarray:
-    """w_i = int phi_i ds over the contact facets (m): the length each contact DOF carries (lumped)."""
-    fb = FacetBasis(basis.mesh, basis.elem, facets=facets, intorder=4)
-    return asm(LinearForm(lambda v, _: v[1]), fb)[dofs]
+def tributary_lengths(basis: Basis, facets: np.ndarray, dofs: np.ndarray, geometry: str = "plane") -> np.ndarray:
+    """w_i = int phi_i ds over the contact facets (m): the length each contact DOF carries (lumped); for
+    ``geometry`` "axisymmetric" the area of its ring, w_i = int phi_i 2 pi r ds (m^2)."""
+    fb = FacetBasis(basis.mesh, basis.elem, facets=facets, intorder=4 if geometry == "plane" else 6)
+    if geometry == "plane":
+        return asm(LinearForm(lambda v, _: v[1]), fb)[dofs]
+    return asm(LinearForm(lambda v, w: 2.0 * np.pi * w.x[0] * v[1]), fb)[dofs]
 
 
 def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load_per_length: float,
                 a_ref: float, level: int, s: FEMLayeredLineSettings, contact_zone: float | None = None
                 ) -> LayeredLineLevel:
     """Solve one mesh level (``level`` 0 = coarsest) with lengths scaled by ``a_ref`` (m). The half model
-    carries W'/2. Raises ConvergenceError if the contact reaches the end of the candidate zone."""
+    carries W'/2 (plane strain; ``load_per_length`` N/m); the axisymmetric model (``s.geometry``, a sphere of
+    ``radius`` on the coated block, x = r) the whole load (N). Raises ConvergenceError if the contact reaches the
+    end of the candidate zone."""
     t0 = time.perf_counter()
     zone = (s.contact_zone if contact_zone is None else contact_zone) * a_ref
     sizing = LayerSizing(s.h_contact * a_ref, zone, s.grading, s.h_max * a_ref, s.layer_elements)
     depth = max(s.block_depth * a_ref, 2.0 * thickness)
     lm = coated_block_half(s.block_width * a_ref, depth, thickness, sizing, level, rigid_substrate=substrate.rigid)
     mats = {LAYER: layer} if substrate.rigid else {LAYER: layer, SUBSTRATE: substrate}
-    body, forms = assemble_layered(lm, mats, s.order, s.formulation)
+    body, forms = assemble_layered(lm, mats, s.order, s.formulation, s.geometry)
     basis, mesh = body.basis, body.basis.mesh
     tiny = 1e-9 * a_ref
     bottom_y = -thickness if substrate.rigid else -lm.depth
@@ -189,10 +219,15 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     x = X[0, dofs]
     W = cb.compliance(dofs)
     g0 = radius - np.sqrt(radius**2 - x**2)          # exact circle, at P2 mid-side nodes too
-    w = tributary_lengths(basis, f_contact, dofs)
-    sys = frictionless.CondensedContact(g0, -np.ones_like(x), W, 0.5 * load_per_length)
+    w = tributary_lengths(basis, f_contact, dofs, s.geometry)
+    share = 0.5 if s.geometry == "plane" else 1.0      # the half model of the plane section; the whole ring
+    sys = frictionless.CondensedContact(g0, -np.ones_like(x), W, share * load_per_length)
     sol = frictionless.active_set(sys, x <= a_ref, tol=s.tol)
-    p = sol.lam / w
+    # a P2 corner on the axis carries no ring area (int phi 2 pi r ds = 0) and no force: it has no pressure of
+    # its own; the estimators read the field from the other nodes (the peak's even fit reaches r = 0)
+    has_area = w > 1e-12 * w.max()
+    r_all = x
+    x, p = x[has_area], sol.lam[has_area] / w[has_area]
     if p[-1] > 0:
         raise ConvergenceError("FEM layered line contact", sol.iterations, np.inf, s.tol,
                                "contact reached the edge of the candidate zone; raise numerics.fem_contact_zone")
@@ -200,24 +235,39 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     # shape-agnostic estimators (femcheck.qoi): the edge is a power law with its exponent fitted (1/2 on a thick
     # layer, 1 on a thin compressible one, 2 on a thin incompressible one), the peak a local quartic
     e, pk = edge(x, p), peak(x, p, centre=0.0)
-    return LayeredLineLevel(h, x, p, pk.value, e.position, 2.0 * float(sol.lam.sum()), sol.delta,
+    position, std = e.position, e.std
+    if s.geometry != "plane":
+        # the axisymmetric section: the edge from the separation beyond it (femcheck.qoi_separation.radial),
+        # because the lumped P2 pressures' edge fit stays 0.14 % inside Hertz's radius down to a/40
+        sep = separation_edge(r_all, sol.gap, float(x[p > 0].max()), h)
+        position, std = sep["edge"], sep["edge_std"]
+    return LayeredLineLevel(h, x, p, pk.value, position, float(sol.lam.sum()) / share, sol.delta,
                             body.n_dofs, int(mesh.t.shape[1]), lm.layer_rows, sol.iterations, sol.residual,
-                            time.perf_counter() - t0, forms, lm, e.exponent, e.misfit, pk.std, e.std)
+                            time.perf_counter() - t0, forms, lm, e.exponent, e.misfit, pk.std, std)
 
 
-def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float) -> float:
+def width_guess(radius: float, layer: Elastic, substrate: Elastic, thickness: float, load: float,
+                geometry: str = "plane") -> float:
     """A first guess of the half-width (m) for the pilot solve: the layer's Hertz width, the substrate's, and
     on a rigid base the thin-layer width (Johnson 1985 §5.9; compressible or squeeze-film) — the largest of the
-    ones that can apply, so that the pilot's candidate zone covers the contact."""
-    a_layer = hertz.line_contact(load, radius, layer.E / (1.0 - layer.nu**2)).half_width
+    ones that can apply, so that the pilot's candidate zone covers the contact. ``geometry`` "axisymmetric":
+    the contact radius of a sphere (load in N)."""
+    point = geometry != "plane"
+
+    def hertz_size(mat):
+        if point:
+            return hertz.point_contact(load, radius, mat.E / (1.0 - mat.nu**2)).semi_axis_x
+        return hertz.line_contact(load, radius, mat.E / (1.0 - mat.nu**2)).half_width
+
+    a_layer = hertz_size(layer)
+    kind = "circular" if point else "line"
     if substrate.rigid:
         if layer.nu <= thin_layer.NU_COMPRESSIBLE_MAX:
-            a_thin = thin_layer.compressible(layer.E, layer.nu, thickness, radius, load, "line").a
+            a_thin = thin_layer.compressible(layer.E, layer.nu, thickness, radius, load, kind).a
         else:
-            a_thin = thin_layer.incompressible(layer.E, thickness, radius, load, "line").a
+            a_thin = thin_layer.incompressible(layer.E, thickness, radius, load, kind).a
         return min(a_layer, a_thin)
-    a_sub = hertz.line_contact(load, radius, substrate.E / (1.0 - substrate.nu**2)).half_width
-    return max(a_layer, a_sub)
+    return max(a_layer, hertz_size(substrate))
 
 
 # The family is aligned on level 1's edge whatever the number of levels (so level 0 is the same mesh and solution
@@ -237,7 +287,7 @@ def reference_width(radius: float, layer: Elastic, substrate: Elastic, thickness
     family keeps the contact edge at the same place relative to the nodes on every level, which the discrete
     contact's edge is sensitive to (measured on layer-line: edges over four unaligned levels scattered by 1 %,
     aligned by 0.04 %); the edge itself is still the estimator's value on each level, never the node."""
-    a = width_guess(radius, layer, substrate, thickness, load)
+    a = width_guess(radius, layer, substrate, thickness, load, s.geometry)
     history = [a]
     for _ in range(max_pilots):
         try:

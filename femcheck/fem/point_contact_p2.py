@@ -36,19 +36,14 @@ from ..meshes.structured_block import StructuredBlockSpec, cached_structured_blo
 from ..qoi import centre_value_2d
 from ..qoi_separation import ellipse as separation_ellipse
 from ..result import ModelResult
-from ..solvers.convergence import Certificate, certificate_stats, certify_formal
+from ..solvers.convergence import certificate_stats
+from ..solvers.similar_levels import certify_similar
 from . import export
 from .point_contact import Gap, indenter_setup
 from .quarter_mortar import solve_quarter_mortar
 
 QUANTITIES = ("p_max", "semi_axis_x", "semi_axis_y", "approach_block")
 
-# The best energy-norm order any finite element space reaches for the Signorini problem: its solution is at
-# most H^{5/2-eps} at the edge of the contact (Kikuchi & Oden 1988; for quadratic elements Hild & Laborde 2002,
-# Appl. Numer. Math. 41), so the regularity, not the element order, bounds it at 3/2. Observed orders
-# above it are not used for the extrapolation (certify_formal): hertz-point's structured levels a/8, a/12, a/18
-# give 2.5 (p_max), 2.9 / 4.3 (semi-axes, y still pre-asymptotic at a/8), 1.4 (approach).
-FORMAL_ORDER = 1.5
 
 
 @dataclass(frozen=True)
@@ -117,24 +112,6 @@ def solve_level(gap: Gap, block, force: float, ax: float, ay: float, level: int,
             "_fields": c}
 
 
-def _certify(levels: list[dict[str, Any]], name: str) -> Certificate:
-    """Certificate of ``name`` over the levels (:func:`certify_formal` at :data:`FORMAL_ORDER`). The semi-axes'
-    standard errors from the separation fit enter only as a floor of the estimate (twice the finest level's):
-    on the structured zone every level samples the separation at the same pattern of points, scaled, so the
-    fit's residual is a deterministic misfit that converges with the mesh, not scatter; it tracks the error
-    itself (hertz-point semi_axis_x: standard error 0.075 / 0.018 / 0.004 % of a where the error against Hertz
-    is +0.100 / +0.028 / +0.007 %), and a two-sigma test of the changes could never pass on such levels."""
-    c = certify_formal([lv["h"] for lv in levels], [lv[name] for lv in levels], FORMAL_ORDER)
-    std = levels[-1].get(f"{name}_std")
-    if std is None or not np.isfinite(std) or c.value == 0:
-        return c
-    floor = 2.0 * std / abs(c.value)
-    if floor <= c.error_estimate:
-        return c
-    return replace(c, error_estimate=floor, note=c.note + f"; estimate raised to twice the finest fit's standard "
-                   f"error ({floor:.1e})")
-
-
 def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem_p2`` model of the point-contact scenes: per quantity a convergence certificate over
     ``numerics.p2_levels`` levels of ratio ``numerics.p2_ratio`` (stats["certificates"]), the finite-size check
@@ -156,7 +133,9 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
         "block": {"side": s.block * max(ax, ay), "depth": s.block * max(ax, ay), "model": "quarter"},
         "levels": levels, "finest": {q: levels[-1][q] for q in QUANTITIES},
     }
-    certs = {n: _certify(levels, n) for n in QUANTITIES + ("contact_area",)}
+    # structured levels: certify_similar (the fits' standard errors a floor, the order capped at Signorini's 3/2;
+    # hertz-point a/8, a/12, a/18 observe 2.5 (p_max), 2.9 / 4.3 (semi-axes, y pre-asymptotic at a/8), 1.4)
+    certs = {n: certify_similar(levels, n) for n in QUANTITIES + ("contact_area",)}
     q = {k: c.value for k, c in certs.items()}
     if s.finite_size_check:
         if progress:

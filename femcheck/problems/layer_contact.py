@@ -48,7 +48,7 @@ from ..qoi import Edge, edges, semi_axes
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 
-MODEL_NAMES = ("bem", "thin_layer", "analytic", "fem", "fem_p2")
+MODEL_NAMES = ("bem", "thin_layer", "analytic", "fem", "fem_p2", "fem_axisym")
 
 
 def _wider(a: Key | None, b: Key | None) -> Key:
@@ -110,6 +110,8 @@ DEPENDS: dict[str, dict] = {
             "reference": True, "coarse": {"numerics.fem_levels": 1}},
     "fem_p2": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_", "numerics.p2_"),
                "reference": True, "coarse": {"numerics.p2_levels": 1}},
+    "fem_axisym": {"params": ("geometry.", "load.", "layer.", "coatings.", "materials.", "numerics.fem_"),
+                   "reference": True, "coarse": {"numerics.fem_levels": 1}},
 }
 
 LAYER_KEYS = ("layer.E", "layer.E_ratio", "layer.nu", "layer.thickness", "layer.h_over_a")
@@ -422,21 +424,30 @@ def _fem_one(lp: dict[str, Any], progress=None) -> ModelResult:
     return (layered_line if geometry_of(lp) == "line" else layered_point).model(lp, progress)
 
 
-# Imported by name when it runs, so that the stored references of the other models are not keyed on the P2
-# code (a key covers the adapter and what it imports); fem_p2's own key covers it through the module name that
-# MODELS["fem_p2"] carries (femcheck.runner.model_modules).
-P2_MODULE = "femcheck.fem.layered_point_p2"
+# Imported by name when they run, so that the stored references of the other models are not keyed on their code
+# (a key covers the adapter and what it imports); their own keys cover it through the module name that
+# MODELS[name] carries (femcheck.runner.model_modules).
+BY_NAME = {"fem_p2": "femcheck.fem.layered_point_p2", "fem_axisym": "femcheck.fem.layered_axisym"}
 
 
 def _fem_p2_one(lp: dict[str, Any], progress=None) -> ModelResult:
     """Layered FE reference with quadratic tetrahedra and a mortar pressure (3D point contact only)."""
     if geometry_of(lp) == "line":
         raise InputError("models.run", "fem_p2 is the 3D point-contact model; allowed for a line contact: fem")
-    return import_module(P2_MODULE).model(lp, progress)
+    return import_module(BY_NAME["fem_p2"]).model(lp, progress)
+
+
+def _fem_axisym_one(lp: dict[str, Any], progress=None) -> ModelResult:
+    """Layered FE reference on the axisymmetric section (P2 triangles; point contact only)."""
+    if geometry_of(lp) == "line":
+        raise InputError("models.run", "fem_axisym is the axisymmetric point-contact model; allowed for a line "
+                         "contact: fem")
+    return import_module(BY_NAME["fem_axisym"]).model(lp, progress)
 
 
 SINGLE: dict[str, Callable[..., ModelResult]] = {"bem": _bem_one, "thin_layer": _thin_one, "analytic": _analytic_one,
-                                                 "fem": _fem_one, "fem_p2": _fem_p2_one}
+                                                 "fem": _fem_one, "fem_p2": _fem_p2_one,
+                                                 "fem_axisym": _fem_axisym_one}
 
 
 def _model(name: str) -> Callable[..., ModelResult]:
@@ -462,8 +473,8 @@ def _model(name: str) -> Callable[..., ModelResult]:
         return ModelResult(name, quantities=q, stats=stats, fields=fields)
 
     run.__doc__ = SINGLE[name].__doc__
-    if name == "fem_p2":
-        run.__module__ = P2_MODULE
+    if name in BY_NAME:
+        run.__module__ = BY_NAME[name]
     return run
 
 
