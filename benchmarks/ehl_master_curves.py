@@ -397,6 +397,12 @@ def write_md(doc: dict, path: Path) -> None:
           "S dP_CENT^DRY (hole) |", "|---|---|---|---|"]
     for d in doc["dry"]:
         L.append(f"| {d['phi']:g} | {d['K']:g} | {d['amplitude']:.4f} | {d['centre']:.4f} |")
+    chk = doc.get("dask_case_time_check")
+    if chk:
+        L += ["", f"Why the dask cases run slower: {chk['what']}", "", "| run | wall (s) | case times (s) |",
+              "|---|---|---|"]
+        L += [f"| {r['run']} | {r['wall_s']:.1f} | {', '.join(f'{t:.1f}' for t in r['case_times'])} |"
+              for r in chk["runs"]]
     res = doc.get("resolution")
     if res and res.get("cases"):
         L += ["", "Discretisation error of the sweep's grid (same case on two grids; relative difference of the "
