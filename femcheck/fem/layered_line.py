@@ -40,12 +40,14 @@ from ..result import ModelResult
 from ..scene import Key
 from ..solvers import frictionless
 from ..qoi import edge, peak
+from ..qoi_separation import OUTER
 from ..qoi_separation import radial as separation_edge
 from ..solvers.convergence import certificate_stats, certify_levels
 from ..solvers.elasticity2d import MIXED_ABOVE_NU, Body, CondensedBody, _deviatoric_part, _divergence, _mass
 from ..meshes.coated import LAYER, SUBSTRATE, LayeredTriMesh, LayerSizing, coated_block_half
 
 _ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
+OUTER_WINDOW = OUTER - 1.0      # length of the separation window beyond the edge, in contact radii
 
 
 @dataclass(frozen=True)
@@ -239,7 +241,10 @@ def solve_level(radius: float, layer: Elastic, substrate: Elastic, thickness: fl
     if s.geometry != "plane":
         # the axisymmetric section: the edge from the separation beyond it (femcheck.qoi_separation.radial),
         # because the lumped P2 pressures' edge fit stays 0.14 % inside Hertz's radius down to a/40
-        sep = separation_edge(r_all, sol.gap, float(x[p > 0].max()), h)
+        rough = float(x[p > 0].max())
+        # the 3/2 law of the separation holds within about the layer's thickness of the edge (the pressure's
+        # edge turns square-root within the layer's boundary layer): the window is at most t long
+        sep = separation_edge(r_all, sol.gap, rough, h, outer=1.0 + min(OUTER_WINDOW, thickness / rough))
         position, std = sep["edge"], sep["edge_std"]
     return LayeredLineLevel(h, x, p, pk.value, position, float(sol.lam.sum()) / share, sol.delta,
                             body.n_dofs, int(mesh.t.shape[1]), lm.layer_rows, sol.iterations, sol.residual,
