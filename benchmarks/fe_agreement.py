@@ -21,7 +21,7 @@ from pathlib import Path
 
 CASES = ("hertz-point:fem", "hertz-point:fem_p2", "hertz-point:ccx-C3D10@0", "hertz-point:ccx-C3D10@1",
          "hertz-point:ccx-C3D4@0", "hertz-point:ccx-C3D4@1", "hertz-line:fem", "hertz-line:ccx-CPE6@0",
-         "hertz-line:ccx-CPE6@1", "layer-point:fem", "layer-point:fem_p2")
+         "hertz-line:ccx-CPE6@1", "layer-point:fem", "layer-point:fem_p2", "layer-point:fem_axisym")
 # the independent value each scene's FE quantities are set against: Hertz, or the layered half-space BEM
 COMPARATOR = {"layer-point": "bem"}
 # CalculiX decks of hertz-point on its a/8 family (level 0 = a/8, ratio sqrt 2); hertz-line on its own levels
