@@ -31,11 +31,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
 from ..result import ModelResult
 from ..solvers.convergence import certificate_stats
 from ..solvers.similar_levels import certify_similar
-from .layered_line import materials_of, reference_width, settings, solve_level
+from .layered_line import settings, solve_family
 
 
 # The family starts at the 2D family's level 1 (h = numerics.fem_h_contact a / 2): at its level 0 (a/10 by default)
@@ -49,24 +48,11 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
     ``geometry.radius`` (m), ``load.normal`` (N) and the ``numerics.fem_*`` keys of the 2D layered FE
     (:data:`femcheck.fem.layered_line.FEM_SCHEMA`)."""
     t_start = time.perf_counter()
-    layer, sub, t = materials_of(params)
-    R, load = float(params["geometry.radius"]), float(params["load.normal"])
-    if R <= 0:
-        raise InputError("geometry.radius", f"{R:g}; allowed (0, inf) m")
-    if load <= 0:
-        raise InputError("load.normal", f"{load:g}; allowed (0, inf) N")
     s = replace(settings(params), geometry="axisymmetric")
     # the candidate zone also carries the separation beyond the edge, from which the radius is fitted out to
     # (1.3 + one element) a: 1.6 a at least
     s = replace(s, contact_zone=max(s.contact_zone, 1.6))
-    if progress:
-        progress("FEM axisymmetric pilot solves (contact radius)")
-    a_ref, pilots = reference_width(R, layer, sub, t, load, s)
-    levels = []
-    for k in range(s.levels):
-        if progress:
-            progress(f"FEM axisymmetric level {k + 1}/{s.levels}")
-        levels.append(solve_level(R, layer, sub, t, load, a_ref, FIRST_LEVEL + k, s))
+    layer, sub, t, a_ref, pilots, levels = solve_family(params, s, FIRST_LEVEL, progress)
     fine = levels[-1]
     rows = [{"h": lv.h, "h_over_a": lv.h / a_ref, "layer_rows": lv.layer_rows, "n_dofs": lv.n_dofs,
              "n_elements": lv.n_elements, "p_max": lv.p_max, "semi_axis_x": lv.half_width,

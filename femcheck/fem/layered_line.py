@@ -392,6 +392,29 @@ def materials_of(params: dict[str, Any]) -> tuple[Elastic, Elastic, float]:
     return Elastic(E1, nu1), sub, t
 
 
+def solve_family(params: dict[str, Any], s: FEMLayeredLineSettings, first_level: int = 0, progress=None
+                 ) -> tuple[Elastic, Elastic, float, float, list[float], list[LayeredLineLevel]]:
+    """(layer, substrate, thickness (m), a_ref (m), pilot widths (m), levels) of the family of ``s`` from flat
+    parameters (``geometry.radius`` and ``load.per_length`` (N/m), or ``load.normal`` (N) for the axisymmetric
+    section): pilots, alignment, then ``s.levels`` levels from ``first_level``."""
+    layer, sub, t = materials_of(params)
+    load_key, unit = ("load.per_length", "N/m") if s.geometry == "plane" else ("load.normal", "N")
+    R, load = float(params["geometry.radius"]), float(params[load_key])
+    if R <= 0:
+        raise InputError("geometry.radius", f"{R:g}; allowed (0, inf) m")
+    if load <= 0:
+        raise InputError(load_key, f"{load:g}; allowed (0, inf) {unit}")
+    if progress:
+        progress("FEM pilot solves (contact size)")
+    a_ref, pilots = reference_width(R, layer, sub, t, load, s)
+    levels = []
+    for k in range(s.levels):
+        if progress:
+            progress(f"FEM level {k + 1}/{s.levels}")
+        levels.append(solve_level(R, layer, sub, t, load, a_ref, first_level + k, s))
+    return layer, sub, t, a_ref, pilots, levels
+
+
 def model(params: dict[str, Any], progress=None) -> ModelResult:
     """The ``fem`` model of the layered line scenes (rigid cylinder on a coated block) from flat parameters:
     ``layer.E|nu|thickness``, ``materials.substrate.E|nu|rigid``, ``geometry.radius``, ``load.per_length`` and
@@ -399,21 +422,8 @@ def model(params: dict[str, Any], progress=None) -> ModelResult:
     :func:`femcheck.qoi.edge`): the certificate's value (Richardson-extrapolated when the levels are in the
     asymptotic range, else the finest level), total_force (N/m, finest level)."""
     t_start = time.perf_counter()
-    layer, sub, t = materials_of(params)
-    R, load = float(params["geometry.radius"]), float(params["load.per_length"])
-    if R <= 0:
-        raise InputError("geometry.radius", f"{R:g}; allowed (0, inf) m")
-    if load <= 0:
-        raise InputError("load.per_length", f"{load:g}; allowed (0, inf) N/m")
     s = settings(params)
-    if progress:
-        progress("FEM pilot solves (contact width)")
-    a_ref, pilots = reference_width(R, layer, sub, t, load, s)
-    levels = []
-    for k in range(s.levels):
-        if progress:
-            progress(f"FEM level {k + 1}/{s.levels}")
-        levels.append(solve_level(R, layer, sub, t, load, a_ref, k, s))
+    layer, sub, t, a_ref, pilots, levels = solve_family(params, s, progress=progress)
     fine = levels[-1]
     quantities = ("p_max", "half_width")
     finest = {q: getattr(fine, q) for q in quantities}
