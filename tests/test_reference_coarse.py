@@ -23,6 +23,7 @@ STORED = [     # (scene, model, scene overrides the reference was solved with)
     pytest.param("coated-roller", "fem", None, id="coated-roller", marks=pytest.mark.slow),   # 8 s
     pytest.param("layer-point", "fem", None, id="layer-point", marks=pytest.mark.slow),
     pytest.param("layer-point", "fem_p2", None, id="layer-point-p2", marks=pytest.mark.slow),
+    pytest.param("layer-point", "fem_axisym", None, id="layer-point-axisym"),
     pytest.param("hertz-point", "fem", None, id="hertz-point", marks=pytest.mark.slow),       # 11 s
     pytest.param("hertz-point", "fem_p2", None, id="hertz-point-p2", marks=pytest.mark.slow),
     pytest.param("srb-normal", "fem", None, id="srb-normal-fem", marks=pytest.mark.slow),
