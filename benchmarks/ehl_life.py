@@ -104,7 +104,17 @@ def life_numbers(hist: sh.StressHistory, b: float, p_hertz: float, fatigue_limit
             "risk_integral_dented": q["risk_integral"], "risk_ratio": s["risk_ratio"],
             "Ibar_ratio": s["risk_ratio"] ** (1.0 / s["c"]), "Ibar_smooth": s["risk_integral_bar_smooth"],
             "Ibar_dented": s["risk_integral_bar"], "life_ratio": q["life_ratio"], "stress_ratio": q["stress_ratio"],
-            "T_Smax_over_pH": s["stress_history_max_smooth"] / p_hertz, "T_Dmax_over_pH": q["stress_history_max"] / p_hertz}
+            "T_Smax_over_pH": s["stress_history_max_smooth"] / p_hertz, "T_Dmax_over_pH": q["stress_history_max"] / p_hertz,
+            "T_Dmax_at_over_b": {k: v / b for k, v in s["stress_history_max_at"].items()}}
+
+
+def frame_extremes(ps: dict, b: float, p_hertz: float) -> dict:
+    """Largest additional pressure max(P - P_S)/p_H over the fed frames and the indent position (in b) of it."""
+    h = ps["smooth"].dx / b
+    dp = {k: float((f - ps["smooth"].pressure).max()) / p_hertz for k, f in ps["frames"].items()}
+    top = max(dp, key=dp.get)
+    return {"dP_max_over_pH": dp[top], "dP_max_at_X_D": top * h,
+            "p_max_over_pH": max(float(f.max()) for f in ps["frames"].values()) / p_hertz}
 
 
 def t_smax(hist: sh.StressHistory) -> float:
@@ -131,7 +141,8 @@ def ehl_case(grid: int, indent: dict = INDENT) -> dict:
     return {"grid": grid, "groups": {"p_hertz": g.p_hertz, "b": g.b, "u_mean": g.u_mean, "u_s": 2 * g.u_mean,
                                      "load": g.load, "M": g.M, "L": g.L, "alpha_bar": g.alpha_bar, "lambda_bar": g.lam},
             "steps": c["steps"], "frames": len(ps["frames"]), "frame_reach_b": ps["reach"],
-            "dP_centred_over_pH": dp, "h_min_smooth_over_b2_Rx": float(sm.H[sm.P > 0].min()),
+            "dP_centred_over_pH": dp, "crossing_extremes": frame_extremes(ps, g.b, g.p_hertz),
+            "h_min_smooth_over_b2_Rx": float(sm.H[sm.P > 0].min()),
             "film_min_crossing": float(min(hist.h_min)), "load_error_max": float(max(np.abs(hist.load_error))),
             "time_crossing_s": t_cross, "time_history_s": t_full,
             "_hist": {"full": full, "pseudo": pseudo}, "_g": g}
@@ -184,6 +195,7 @@ def dry_case(g, grid: int, indent: dict = INDENT) -> dict:
                                          z, wz, 2.0 * g.b, CHI * g.b, "contact")
     return {"cells": dc.grid.nx, "cell_over_b": dc.grid.dx / g.b, "frames": len(ps["frames"]),
             "dP_centred_over_pH": float((ps["frames"][0] - dc.smooth).max()) / g.p_hertz,
+            "crossing_extremes": frame_extremes(ps, g.b, g.p_hertz),
             "time_bem_s": t_solve, "time_history_s": t_hist, "_hist": {"full": full, "pseudo": pseudo}}
 
 
@@ -237,6 +249,12 @@ def markdown(res: dict) -> str:
               f"[{e['frame_reach_b'][0]:.3f}, {e['frame_reach_b'][1]:.3f}] b), {e['time_crossing_s']:.0f} s; dry "
               f"{d['frames']} BEM frames, {d['time_bem_s']:.0f} s. Stress histories {e['time_history_s']:.0f} s "
               f"(EHL), {d['time_history_s']:.0f} s (dry).", "",
+              f"Over the fed frames, largest dP/p_H: EHL {e['crossing_extremes']['dP_max_over_pH']:.4f} at X_D = "
+              f"{e['crossing_extremes']['dP_max_at_X_D']:.3f} b (largest P/p_H {e['crossing_extremes']['p_max_over_pH']:.4f}),"
+              f" dry {d['crossing_extremes']['dP_max_over_pH']:.4f} at {d['crossing_extremes']['dP_max_at_X_D']:.3f} b "
+              f"(P/p_H {d['crossing_extremes']['p_max_over_pH']:.4f}). T_Dmax (full, no limit) at depth, xi, y = "
+              + ", ".join(f"{v:.3f}" for v in r['no_limit']['full']['ehl']['T_Dmax_at_over_b'].values()) + " b (EHL), "
+              + ", ".join(f"{v:.3f}" for v in r['no_limit']['full']['dry']['T_Dmax_at_over_b'].values()) + " b (dry).", "",
               "| fatigue limit | history | T_Smax/p_H EHL, dry | T_D/T_S EHL | dry | Ibar_D/Ibar_S EHL | dry | "
               "L/L_S EHL | dry | L_D(EHL)/L_D(dry) | L_S(EHL)/L_S(dry) | check 7 |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|"]
