@@ -72,7 +72,7 @@ def test_lubricated_dented_contact_is_less_severe_than_the_dry_one(bench):
     """Seed 004 §4.3.1 / spec B.7.7 on 65^2 (EHL nodes; dry BEM cells of the same size), tau_inf = 0.7 T_Smax of
     the dry contact: I-bar_D/I-bar_S(EHL) < I-bar_D/I-bar_S(dry) and L/L_S(EHL) > L/L_S(dry). Band: femcheck's
     own measured values (benchmarks/results/ehl_life.md, 65^2 and 129^2): the dry life reduction 1 - L/L_S is at
-    least 4 times the lubricated one (measured 10.3 on 65^2, see the benchmark for 129^2), and the EHL centred
+    least 4 times the lubricated one (measured 10.3 on 65^2, 6.2 on 129^2), and the EHL centred
     additional pressure is below the dry one (seed 004 §3.3: the dry contact is the upper bound)."""
     r = bench.compare(65)
     f = r["limit_0.7_dry"]["full"]
