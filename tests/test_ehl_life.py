@@ -3,7 +3,7 @@
 - Interface: a crossing handed over the way the EHL solver gives it (node coordinates in b, pressures in p_H,
   the steps' indent positions X_D in b, in any order, steps beyond the reach included) reaches the life model as
   the same frames as the dry BEM pass: the same risk integrals and life ratio to round-off.
-- Physics (slow, 65^2, about 25 s): at the §4.3.1 operating point (M = 350, L = 17) and median indent (Phi = 0.56,
+- Physics (slow, 65^2, 28 s measured): at the §4.3.1 operating point (M = 350, L = 17) and median indent (Phi = 0.56,
   D/Phi = 0.6, K = 4) the lubricated dented contact is less severe than the dry one (thesis §4.3.1: "the
   pure-rolling EHL contacts are less severe than dry contacts"; spec B.7.7: I-bar_D/I-bar_S(EHL) <
   I-bar_D/I-bar_S(dry)).
