@@ -106,8 +106,9 @@ def radial(r: np.ndarray, g: np.ndarray, rough: float, h: float, exclude: float 
            outer: float = OUTER) -> dict[str, float]:
     """Radius (m) of a circular contact (or half-width of a line contact) from the separation ``g`` (m) at the
     section's surface DOFs ``r`` (m): g = max(t, 0)^(3/2) (c0 + c1 t + c2 t^2), t = r / A - 1, fitted over
-    [A (1 + e), A (outer + e)] (at least 4 h long), e = ``exclude`` h / A, in two passes as :func:`ellipse` (from ``rough``, the
-    last loaded node, with half an element more excluded and a window 0.2 A longer, then from the first fit).
+    [A (1 + e), A (outer + e)] (at least 4 h long), e = ``exclude`` h / A, in two passes as :func:`ellipse`
+    (from ``rough``, the last loaded node, with half an element more excluded and a window 0.2 A longer, then
+    from the first fit).
     On the exact Hertz separation sampled every h/2 the bias is -6.6e-5 / -3.0e-5 / -1.9e-5 / -1.6e-5 of a at
     h = a/10 / a/20 / a/40 / a/80, whether ``rough`` is on the edge or 1.5 elements inside. Returns ``edge``,
     ``edge_std`` (m), ``points``, ``misfit``."""

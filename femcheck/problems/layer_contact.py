@@ -430,24 +430,22 @@ def _fem_one(lp: dict[str, Any], progress=None) -> ModelResult:
 BY_NAME = {"fem_p2": "femcheck.fem.layered_point_p2", "fem_axisym": "femcheck.fem.layered_axisym"}
 
 
-def _fem_p2_one(lp: dict[str, Any], progress=None) -> ModelResult:
-    """Layered FE reference with quadratic tetrahedra and a mortar pressure (3D point contact only)."""
-    if geometry_of(lp) == "line":
-        raise InputError("models.run", "fem_p2 is the 3D point-contact model; allowed for a line contact: fem")
-    return import_module(BY_NAME["fem_p2"]).model(lp, progress)
+def _point_only(name: str, what: str) -> Callable[..., ModelResult]:
+    """The point-contact model ``name`` (``what`` it is), imported by name when it runs; refused for a line
+    contact."""
+    def run(lp: dict[str, Any], progress=None) -> ModelResult:
+        if geometry_of(lp) == "line":
+            raise InputError("models.run", f"{name} is the {what} model; allowed for a line contact: fem")
+        return import_module(BY_NAME[name]).model(lp, progress)
 
-
-def _fem_axisym_one(lp: dict[str, Any], progress=None) -> ModelResult:
-    """Layered FE reference on the axisymmetric section (P2 triangles; point contact only)."""
-    if geometry_of(lp) == "line":
-        raise InputError("models.run", "fem_axisym is the axisymmetric point-contact model; allowed for a line "
-                         "contact: fem")
-    return import_module(BY_NAME["fem_axisym"]).model(lp, progress)
+    run.__doc__ = f"Layered FE reference, {what} (:mod:`{BY_NAME[name]}`)."
+    return run
 
 
 SINGLE: dict[str, Callable[..., ModelResult]] = {"bem": _bem_one, "thin_layer": _thin_one, "analytic": _analytic_one,
-                                                 "fem": _fem_one, "fem_p2": _fem_p2_one,
-                                                 "fem_axisym": _fem_axisym_one}
+                                                 "fem": _fem_one,
+                                                 "fem_p2": _point_only("fem_p2", "3D point-contact"),
+                                                 "fem_axisym": _point_only("fem_axisym", "axisymmetric point-contact")}
 
 
 def _model(name: str) -> Callable[..., ModelResult]:
