@@ -6,6 +6,7 @@ stderr naming the key and its allowed range; nothing written).
 from __future__ import annotations
 
 import json
+import os
 import sys
 import time
 from contextlib import contextmanager
@@ -483,7 +484,11 @@ def main() -> None:
         signum = getattr(err, "signum", signal.SIGINT)
         print(f"femcheck: interrupted ({signal.Signals(signum).name}): stopped, workers ended, nothing written",
               file=sys.stderr)
-        sys.exit(128 + signum)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        # the workers are ended and nothing is left to write: skip the interpreter's exit hooks, of which
+        # concurrent.futures' may write to the stopped pool's closed wakeup pipe and print a traceback
+        os._exit(128 + signum)
 
 
 if __name__ == "__main__":
