@@ -193,7 +193,7 @@ def ring_compliance(fe: RingFE, backend: str = "auto", system: RingSystem | None
     Kff = sys_.K[sys_.free][:, sys_.free].tocsr()
     Bf = sys_.B[sys_.free]
     t0 = time.perf_counter()
-    fac = SPDFactor(Kff, backend=backend, tol=1e-9)
+    fac = SPDFactor(Kff, backend=backend, tol=1e-8)
     times["factor"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     X = fac.solve(Bf)
