@@ -15,7 +15,9 @@ ln q_K(K) + ln q_Tinf(t), least squares, q_Tinf(0) = 1, T_Dmax/T_Smax each sampl
 eq 4.6). Held out: (1) leave one indent out (its four limits), fit on the other 47; (2) whole slices: Phi = 0.75
 (interpolation), Phi = 1 (extrapolation), D/Phi = 0.5, K = 4 (q_K interpolated linearly in K in its log between
 the fitted K = 3 and 8), t = 0.5 (q_Tinf interpolated in t). Errors on I_D/I_S, on I-bar_D/I-bar_S = (I_D/I_S)^(1/c)
-and on the life ratio L/L_S = (I_D/I_S)^(-1/e) (f_d = 1).
+and on the life ratio L/L_S = (I_D/I_S)^(-1/e) (f_d = 1). (3) The thesis' route of Fig 4.4: T_Dmax/T_Smax
+not computed but read off a straight line in the centred additional pressure dP/p_H (fitted per K on the other
+indents), then eq 4.6.
 """
 from __future__ import annotations
 
@@ -124,6 +126,28 @@ def analyse(indents: list[dict], c: float = 8.0, e: float = 10.0 / 9.0) -> dict:
     res["below_smooth"] = {"n": int((S["risk_ratio"] < 1.0).sum()), "min": float(S["risk_ratio"].min())}
     res["leave_one_indent_out_by_limit"] = {
         str(t): errors(pred[S["limit_ratio"] == t], S["risk_ratio"][S["limit_ratio"] == t], c, e) for t in LIMITS}
+    # (1b) the thesis' route (Fig 4.4): T_Dmax/T_Smax not computed but read off a straight line in the centred
+    # additional pressure dP/p_H (fitted per K on the other indents), then eq 4.6
+    dP = np.array([indents[int(i)]["dP_over_pH"] for i in S["indent"]])
+    pred_dp = np.full(S["phi"].size, np.nan)
+    lines = {}
+    for i in range(len(indents)):
+        out = S["indent"] == i
+        keep = ~out
+        same_k = keep & (S["K"] == indents[i]["K"])
+        a, b0 = np.polyfit(dP[same_k], S["stress_ratio"][same_k], 1)
+        f = indent_risk.fit_eq46(S["phi"][keep], S["K"][keep], S["limit_ratio"][keep], S["stress_ratio"][keep],
+                                 S["risk_ratio"][keep], c)
+        S2 = dict(S)
+        S2["stress_ratio"] = np.where(out, a * dP + b0, S["stress_ratio"])
+        pred_dp[out] = predict(f, S2, out)
+    for K in KS:
+        sel = S["K"] == K
+        a, b0 = np.polyfit(dP[sel], S["stress_ratio"][sel], 1)
+        r = S["stress_ratio"][sel] - (a * dP[sel] + b0)
+        lines[str(K)] = {"slope": float(a), "intercept": float(b0),
+                         "R2": float(1 - np.sum(r ** 2) / np.sum((S["stress_ratio"][sel] - S["stress_ratio"][sel].mean()) ** 2))}
+    res["leave_one_indent_out_stress_ratio_from_dP"] = {**errors(pred_dp, S["risk_ratio"], c, e), "lines": lines}
     # (2) whole slices
     res["slices"] = {}
     for name, key, val in (("Phi = 0.75 (interpolation)", "phi", 0.75), ("Phi = 1 (extrapolation)", "phi", 1.0),
@@ -193,10 +217,15 @@ def write_md(doc: dict, path: Path) -> None:
     L.append(row("in sample (all samples fitted)", a["in_sample"]))
     L.append(row("leave one indent out", a["leave_one_indent_out"]))
     L.append(row("leave one indent out, samples with I_D/I_S >= 1.1", a["leave_one_indent_out_risk_ratio_above_1.1"]))
+    L.append(row("leave one indent out, T_Dmax/T_Smax from a line in dP/p_H (Fig 4.4 route)",
+                 a["leave_one_indent_out_stress_ratio_from_dP"]))
     for t, e in a["leave_one_indent_out_by_limit"].items():
         L.append(row(f"leave one indent out, t = {t}", e))
     for name, e in a["slices"].items():
         L.append(row(f"slice held out: {name}", e))
+    L += ["", "Fig 4.4 route: T_Dmax/T_Smax = slope x dP/p_H + intercept per K (all indents): " + "; ".join(
+        f"K = {float(k):g}: {v['slope']:.3f} dP/p_H + {v['intercept']:.3f}, R^2 = {v['R2']:.3f}"
+        for k, v in a["leave_one_indent_out_stress_ratio_from_dP"]["lines"].items()) + "."]
     L += ["", f"{a['below_smooth']['n']} samples have I_D/I_S < 1 (down to {a['below_smooth']['min']:.4f}: a shallow "
           "or flat-shouldered indent that lowers the stresses under its hole more than its shoulders raise them); "
           "eq 4.6 is >= 1 by construction and cannot represent them.",
