@@ -1,6 +1,6 @@
 """benchmarks/life_population.py: the risk map of indent populations (seed 004 Figs 4.10-4.11).
 
-Slow (65^2, one EHL march to the centre, one dry BEM pair, two pseudo-transient passes; 25 s measured): the map's
+Slow (65^2, one EHL march to the centre, one dry BEM pair, two pseudo-transient passes; 13 s measured alone): the map's
 cell at the thesis' median indent (Phi = 0.56 b, D/Phi = 0.6, K = 4, §4.3.1) against benchmarks/ehl_life.py's
 stored 65^2 result for the same indent (benchmarks/results/ehl_life.json: its own full crossing, whose centred
 step feeds its pseudo-transient pass): I_D/I_S lubricated and dry at T_inf = 0.7 T_Smax(dry) and without a limit
