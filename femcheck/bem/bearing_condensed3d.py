@@ -1,4 +1,4 @@
-"""3D condensed bearing model (spec bearing-load.md P3, issue 28 item 1): a single-row cylindrical roller bearing
+"""3D condensed bearing model (spec bearing-load.md P3): a single-row cylindrical roller bearing
 with an elastic outer ring, whose compliance comes from a coarse 3D FE condensed onto the raceway slices
 (:mod:`femcheck.fem.ring3d_compliance`), coupled with the ISO/TS 16281 slice law (crowning, misalignment) and
 solved for the inner ring's rigid displacements; SI units (m, N, rad).
@@ -184,7 +184,7 @@ def solve_direct(row: SlicedRow, K, free: np.ndarray, B: np.ndarray, radial_load
         K U - B q(d) = 0,   G^T q(d) - F = 0,   d = G u - c - B^T U,
         Hessian [[K + B k B^T, -B k G], [-G^T k B^T, G^T k G]]  (sparse, factorised by PARDISO each iteration),
 
-    with backtracking on Pi. The reference for :func:`solve` (check (c) of the issue: the condensation itself)."""
+    with backtracking on Pi. The reference for :func:`solve`: it checks the condensation itself."""
     from scipy.sparse import bmat, csr_matrix, diags
     import pypardiso
 

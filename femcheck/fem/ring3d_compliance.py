@@ -1,5 +1,5 @@
 """Compliance of an elastic bearing ring from a coarse 3D FE, condensed onto the raceway slices (spec
-bearing-load.md P3, issue 28 item 1), SI units (m, N, Pa).
+bearing-load.md P3), SI units (m, N, Pa).
 
 The ring (:mod:`femcheck.meshes.ring3d`: structured hexahedra, 20-node serendipity elements ``ElementHexS2``) is
 loaded on its raceway by one patch per roller position j and ISO/TS 16281 slice k,
