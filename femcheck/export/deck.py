@@ -138,6 +138,10 @@ def deck_lines(d: Deck, fmt: str) -> list[str]:
         if d.dim == 2:
             L.append("1.")                    # plane-strain thickness (m)
     L += _rigid(d, fmt)
+    for k, sp in enumerate(d.springs):
+        eid = d.last_element_id + k + 1
+        L += [f"*ELEMENT, TYPE=SPRING2, ELSET={sp.elset}", f"{eid}, {sp.a + 1}, {sp.b + 1}",
+              f"*SPRING, ELSET={sp.elset}", f"{sp.dof}, {sp.dof}", _num(sp.stiffness)]
     for eq in d.equations:
         L += ["*EQUATION", str(len(eq)), ", ".join(f"{n + 1}, {dof}, {_num(c)}" for n, dof, c in eq)]
     L += ["*AMPLITUDE, NAME=FULL", "0., 1., 1., 1."]
@@ -145,6 +149,10 @@ def deck_lines(d: Deck, fmt: str) -> list[str]:
     steps = d.load_steps()
     for k, st in enumerate(steps):
         L += [f"** {st.comment}", f"*STEP, INC={st.max_increments}", "*STATIC", f"{_num(st.increment)}, 1."]
+        if st.remove:
+            L += ["*MODEL CHANGE, TYPE=ELEMENT, REMOVE", ", ".join(st.remove)]
+        if st.grow_below is not None:      # I_0, I_R, I_P, I_C, I_L at their defaults, I_G set
+            L += ["*CONTROLS, PARAMETERS=TIME INCREMENTATION", f"4, 8, 9, 16, 10, {st.grow_below}"]
         if k == 0 or st.new or st.displacements:
             L += ["*BOUNDARY" + (", OP=NEW" if k > 0 and st.new else ""), *_bcs(d, fmt)]
             L += [f"{n + 1}, {dof}, {dof}, {_num(v)}" for n, dof, v in st.displacements]

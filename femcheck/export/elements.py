@@ -13,7 +13,7 @@ import numpy as np
 TET_FACES = np.array([[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]])      # S1..S4 of C3D4 / C3D10
 TRI_EDGES = np.array([[0, 1], [1, 2], [2, 0]])                        # S1..S3 of CPE3 / CPE6
 TET_EDGES = np.array([[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]])  # mid-side nodes 5..10 of C3D10
-NODES_PER_ELEMENT = {"C3D4": 4, "C3D10": 10, "C3D8": 8, "CPE3": 3, "CPE6": 6, "CPE4": 4}
+NODES_PER_ELEMENT = {"C3D4": 4, "C3D10": 10, "C3D8": 8, "CPE3": 3, "CPE6": 6, "CPE4": 4, "SPRING2": 2}
 ELEMENT_TYPE = {(3, 1): "C3D4", (3, 2): "C3D10", (2, 1): "CPE3", (2, 2): "CPE6"}
 
 

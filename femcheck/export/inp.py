@@ -58,7 +58,7 @@ def element_types(cards: list[Card]) -> dict[str, str]:
 HEADING_TEXT = -1
 _FIELDS = {
     "HEADING": HEADING_TEXT, "NODE": {3, 4}, "ELEMENT": None, "NSET": None, "ELSET": None, "SURFACE": {2},
-    "MATERIAL": set(), "ELASTIC": {2}, "SOLID SECTION": {1}, "RIGID BODY": set(), "AMPLITUDE": None,
+    "MATERIAL": set(), "ELASTIC": {2}, "SOLID SECTION": {1}, "SPRING": {1, 2}, "MODEL CHANGE": None, "CONTROLS": None, "RIGID BODY": set(), "AMPLITUDE": None,
     "SURFACE INTERACTION": set(), "SURFACE BEHAVIOR": {1, 2, 3}, "FRICTION": {1, 2}, "EQUATION": None, "CONTACT PAIR": {2}, "STEP": set(),
     "STATIC": {1, 2, 3, 4}, "BOUNDARY": {3, 4}, "CLOAD": {3}, "END STEP": set(), "OUTPUT": set(),
     "NODE OUTPUT": None, "ELEMENT OUTPUT": None, "CONTACT OUTPUT": None, "NODE PRINT": None, "NODE FILE": None,

@@ -89,11 +89,25 @@ class RigidIndenter:
 
 
 @dataclass
+class Spring:
+    """A linear spring (SPRING2) of ``stiffness`` (N/m) between dof ``dof`` of node columns ``a`` and ``b``."""
+
+    a: int
+    b: int
+    dof: int
+    stiffness: float
+    elset: str
+
+
+@dataclass
 class Step:
     """One static step under the deck's fixed conditions: ``displacements`` (node column, dof, value m)
     prescribed, ``loads`` (node column, dof, value N) concentrated forces (``full``: applied at full value from
     the step's start, else ramped over the step), ``new`` drops the previous step's prescribed displacements
-    (OP=NEW), ``increment`` the first increment (fraction of the step), ``comment`` one line."""
+    (OP=NEW), ``increment`` the first increment (fraction of the step), ``comment`` one line, ``remove`` element
+    sets taken out of the model at the step's start (``*MODEL CHANGE, TYPE=ELEMENT, REMOVE``), ``grow_below``
+    (optional) the Newton iteration count of two consecutive increments below which the increment grows (the
+    time-incrementation control I_G, default 4 in both codes)."""
 
     comment: str
     displacements: list[tuple[int, int, float]] = field(default_factory=list)
@@ -102,6 +116,8 @@ class Step:
     new: bool = False
     increment: float = 1.0
     max_increments: int = 200
+    remove: list[str] = field(default_factory=list)
+    grow_below: int | None = None
 
 
 @dataclass
@@ -112,7 +128,8 @@ class Deck:
     writer puts in the heading and the caller reports. ``contacts``, ``rigid`` and ``steps`` add further contact
     pairs, rigid bodies and replace the two default steps (push, then load) when given; ``prints`` the
     ``.dat`` tables (node set, variable, totals only); ``notes`` extra heading lines; ``equations`` linear
-    constraints sum c_i u(node_i, dof_i) = 0, each a list of (node column, dof, c), the first term eliminated."""
+    constraints sum c_i u(node_i, dof_i) = 0, each a list of (node column, dof, c), the first term eliminated;
+    ``springs`` linear springs between two nodes' dofs."""
 
     title: str
     dim: int
@@ -133,10 +150,15 @@ class Deck:
     prints: list[tuple[str, str, bool]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     equations: list[list[tuple[int, int, float]]] = field(default_factory=list)
+    springs: list[Spring] = field(default_factory=list)
 
     @property
     def n_nodes(self) -> int:
         return self.points.shape[1]
+
+    @property
+    def last_element_id(self) -> int:
+        return max(int(b.ids[-1]) for b in self.blocks)
 
     @property
     def all_contacts(self) -> list[Contact]:

@@ -12,6 +12,7 @@ Estimators: 3D :func:`femcheck.qoi.symmetric_contact` (even quartic about the ce
 edges for the semi-axes), 2D :func:`femcheck.qoi.peak` (even quartic about x = 0) and :func:`femcheck.qoi.edge`;
 ``p_max_nodal`` the largest nodal value. ``approach`` (m): the rigid indenter's displacement; ``total_force``:
 the bottom reaction scaled to the full contact (x 4 for the quarter, x 2 for the half model).
+:func:`read_srb` reads the two-contact deck of srb-normal (:mod:`femcheck.export.srb`) per contact.
 """
 from __future__ import annotations
 
@@ -68,4 +69,42 @@ def read(deck_path: Path) -> dict[str, float | str]:
     out["approach"] = float(-u[0, dim])
     out["total_force"] = float(dat[("total force", "NBOTTOM")][0, dim]) * (4.0 if dim == 3 else 2.0)
     out["n_nodes"] = int(res.nodes.size)
+    return out
+
+
+def read_srb(deck_path: Path, nodal: bool = False) -> dict[str, dict]:
+    """Per raceway contact ("inner", "outer") of a solved srb-normal deck (:func:`femcheck.export.srb.srb`):
+    CPRESS at the roller's contact-face nodes (the slave side, as femcheck's two-body solver reports its pressure)
+    in the contact's local frame (x rolling, y along the roller axis, origin on the x = 0 symmetry plane below the
+    roller's reference node), the estimators of :func:`femcheck.qoi.symmetric_contact` about the loaded patch's
+    mid-length as :func:`femcheck.fem.srb_conformal.solve_contact` takes them; ``approach`` (m) the roller's rigid
+    displacement along -z, ``total_force`` (N) twice the raceway's bottom reaction (half model); with ``nodal``
+    also the face nodes ``nodes_x`` (3, n) (m, undeformed, local frame) and their CPRESS ``nodes_pressure`` (Pa)."""
+    deck_path = Path(deck_path)
+    cards = inp.parse(deck_path.read_text())
+    sets = inp.node_sets(cards)
+    res = frd_reader.read_frd(deck_path.with_suffix(".frd"))
+    dat = frd_reader.read_dat(deck_path.with_suffix(".dat"))
+    index = {int(n): i for i, n in enumerate(res.nodes)}
+    c = res.last("CONTACT")
+    cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
+    out = {}
+    for contact, tag in (("inner", "I"), ("outer", "O")):
+        top = sets[f"NTOP_{tag}"]
+        X = res.coords[[index[int(n)] for n in top]].T
+        x_ref = res.coords[index[int(sets[f"NREF_{tag}"][0])], 0]
+        p = np.clip(np.array([cp.get(int(n), 0.0) for n in top]), 0.0, None)
+        x, y = X[0] - x_ref, X[1]
+        loaded = y[p > 0]
+        centre_y = 0.5 * (loaded.min() + loaded.max())
+        fit = symmetric_contact(x, y - centre_y, p)
+        q = {k: float(fit[k]) for k in ("p_max", "semi_axis_x", "semi_axis_y", "p_max_std", "semi_axis_x_std",
+                                        "semi_axis_y_std")}
+        q["contact_area"] = float(np.pi * q["semi_axis_x"] * q["semi_axis_y"])
+        q.update({"centre_y": float(centre_y), "p_max_nodal": float(p.max()), "contact_nodes": int((p > 0).sum()),
+                  "approach": float(-dat[("displacements", f"NREF_{tag}")][0, 3]),
+                  "total_force": 2.0 * float(dat[("total force", f"NBOTTOM_{tag}")][0, 3])})
+        if nodal:
+            q.update(nodes_x=np.vstack([x, y, X[2]]), nodes_pressure=p)
+        out[contact] = q
     return out

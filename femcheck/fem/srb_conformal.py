@@ -133,8 +133,10 @@ def segment_specs(params: dict[str, Any], contact: str, level: int):
     return rspec, gspec, hz, (zx, zy)
 
 
-def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str, Any]:
-    """One raceway contact on one mesh level; returns the level's quantities and solver statistics."""
+def solve_contact(params: dict[str, Any], contact: str, level: int, nodal: bool = False) -> dict[str, Any]:
+    """One raceway contact on one mesh level; returns the level's quantities and solver statistics, with
+    ``nodal``: also the roller's contact-candidate nodes ``nodes_x`` (3, n) (m, undeformed, the contact's local
+    frame) and their pressures ``nodes_pressure`` (Pa), for node-by-node comparisons on the same mesh."""
     s = {**FEM_DEFAULTS, **{k: v for k, v in params.items() if k.startswith("numerics.conformal_")}}
     roller, ring = _materials(params)
     load = float(params["load.normal"])
@@ -157,17 +159,20 @@ def solve_contact(params: dict[str, Any], contact: str, level: int) -> dict[str,
     loaded = ys[sol.pressure > 0]
     centre_y = 0.5 * (loaded.min() + loaded.max())
     fit = symmetric_contact(xs, ys - centre_y, sol.pressure)
-    return {"contact": contact, "level": level, "h": hc, "h_over_a": hc / a, "p_max": fit["p_max"],
-            "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"], "centre_y": centre_y,
-            "contact_area": float(np.pi * fit["semi_axis_x"] * fit["semi_axis_y"]),
-            "edge_exponent_x": fit["exponent_x"], "edge_exponent_y": fit["exponent_y"],
-            **{k: v for k, v in fit.items() if k.endswith("_std")},
-            "p_max_nodal": float(sol.pressure.max()),
-            "total_force": 2.0 * sol.total_force, "approach": sol.approach,
-            "n_nodes": int(rm.n_nodes + gm.n_nodes), "n_dofs": sol.n_dofs, "active_nodes": int(sol.active.sum()),
-            "iterations": sol.iterations, "cg_iterations": sol.cg_iterations, "residual": sol.residual,
-            "linear_solver": sol.linear_solver, "mesh_s": mesh_s, **sol.times,
-            "hertz": {"p_max": hz.p_max, "semi_axis_x": a, "semi_axis_y": b}}
+    out = {"contact": contact, "level": level, "h": hc, "h_over_a": hc / a, "p_max": fit["p_max"],
+           "semi_axis_x": fit["semi_axis_x"], "semi_axis_y": fit["semi_axis_y"], "centre_y": centre_y,
+           "contact_area": float(np.pi * fit["semi_axis_x"] * fit["semi_axis_y"]),
+           "edge_exponent_x": fit["exponent_x"], "edge_exponent_y": fit["exponent_y"],
+           **{k: v for k, v in fit.items() if k.endswith("_std")},
+           "p_max_nodal": float(sol.pressure.max()),
+           "total_force": 2.0 * sol.total_force, "approach": sol.approach,
+           "n_nodes": int(rm.n_nodes + gm.n_nodes), "n_dofs": sol.n_dofs, "active_nodes": int(sol.active.sum()),
+           "iterations": sol.iterations, "cg_iterations": sol.cg_iterations, "residual": sol.residual,
+           "linear_solver": sol.linear_solver, "mesh_s": mesh_s, **sol.times,
+           "hertz": {"p_max": hz.p_max, "semi_axis_x": a, "semi_axis_y": b}}
+    if nodal:
+        out.update(nodes_x=sol.x, nodes_pressure=sol.pressure)
+    return out
 
 
 def model(params: dict[str, Any], progress=None) -> ModelResult:

@@ -10,7 +10,8 @@ the point-contact models (:mod:`femcheck.problems.point_contact`): ``analytic`` 
 (half-space BEM), ``fem`` (3D FE reference with the equivalent paraboloid on a flat block: the half-space
 geometry of Hertz and the BEM). ``fem_conformal`` is the conformal sub-model: the barrel-roller segment and
 each raceway segment meshed with their real curvatures, two-body node-to-surface contact
-(:mod:`femcheck.fem.srb_conformal`). Quantities carry the suffix ``_inner`` / ``_outer``.
+(:mod:`femcheck.fem.srb_conformal`). ``calculix`` (selected with --models) solves the same conformal meshes
+in CalculiX (:mod:`femcheck.export.calculix_model`). Quantities carry the suffix ``_inner`` / ``_outer``.
 """
 from __future__ import annotations
 
@@ -23,7 +24,7 @@ from ..scene import Key, Scene, build_scene, check_body_pair, material_keys, mod
 from . import point_contact
 
 CONTACTS = ("inner", "outer")
-MODEL_NAMES = ("analytic", "bem", "fem", "fem_conformal")
+MODEL_NAMES = ("analytic", "bem", "fem", "fem_conformal", "calculix")
 
 SCHEMA: dict[str, Key] = {
     "geometry.roller_diameter": Key("float", "m", "roller nominal diameter D", lo=0.0),
@@ -133,8 +134,13 @@ def fem_conformal(scene: Scene, progress=None) -> ModelResult:
     return srb_conformal.model(scene.params, progress)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {**{n: _both(n) for n in MODEL_NAMES if n != "fem_conformal"},
-                                                 "fem_conformal": fem_conformal}
+calculix = point_contact._by_name(
+    "femcheck.export.calculix_model", False, "CalculiX (``ccx``) on the conformal sub-model's meshes, both raceway "
+    "contacts, an independent FE (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed.")
+
+MODELS: dict[str, Callable[..., ModelResult]] = {
+    **{n: _both(n) for n in MODEL_NAMES if n not in ("fem_conformal", "calculix")},
+    "fem_conformal": fem_conformal, "calculix": calculix}
 
 
 def load_of(scene: Scene) -> float:
