@@ -224,12 +224,27 @@ def write_md(doc: dict, path: Path) -> None:
          "size; K = 4, pseudo-transient histories, c = 8, e = 10/9, window [-2b, 2b]^2. I_D/I_S "
          "(= (I-bar_D/I-bar_S)^c) per indent; fatigue limit 0.7 T_Smax(dry) "
          f"= {doc['tau_inf_over_pH']:.4f} p_H and 0. Case time {sum(c['time_s'] for c in doc['cases']):.0f} s.", ""]
+    fine = {(c["phi"], c["slope"]): c["refined"] for c in doc["cases"] if "refined" in c}
+
+    def cell(name, i, j, v):
+        if not np.isfinite(v):
+            return "refused"
+        r = fine.get((doc["phis"][i], doc["slopes"][j]))
+        if r and name.startswith("ehl"):
+            return f"{v:.5g} ({r['grid']}^2; refused on {doc['grid']}^2)"
+        return f"{v:.5g}"
+
     for name, R in m.items():
         L += [f"## {name}", "", "| Phi \\ D/Phi | " + " | ".join(f"{s:g}" for s in doc["slopes"]) + " |",
               "|---|" + "---|" * len(doc["slopes"])]
         for i, p in enumerate(doc["phis"]):
-            L.append(f"| {p:g} | " + " | ".join(f"{R[i, j]:.5g}" if np.isfinite(R[i, j]) else "refused"
-                                                for j in range(len(doc["slopes"]))) + " |")
+            L.append(f"| {p:g} | " + " | ".join(cell(name, i, j, R[i, j]) for j in range(len(doc["slopes"]))) + " |")
+        L.append("")
+    for (p, sl), r in fine.items():
+        L.append(f"Refined cell Phi = {p:g}, D/Phi = {sl:g} on {r['grid']}^2 ({r['time_s']:.0f} s): dry there "
+                 f"{r['dry']['limit_0.7']['risk_ratio']:.5g} (0.7) and {r['dry']['no_limit']['risk_ratio']:.5g} (no "
+                 f"limit); EHL film minimum {r['ehl'].get('film_min', float('nan')):.3g} b^2/Rx.")
+    if fine:
         L.append("")
     L += ["## Population", "",
           f"Diameter log-normal, median {pop['diameter']['median']:g} b, gsd {pop['diameter']['gsd']:g}; slope "
