@@ -171,6 +171,30 @@ def test_thin_ring_under_two_opposite_loads_is_the_curved_beam(ratio):
 test_thin_ring_under_two_opposite_loads_is_the_curved_beam.devs = {}
 
 
+def test_elastic_inner_ring_on_a_rigid_shaft(ring):
+    """The inner ring (raceway 54.991 mm, bore 45 mm clamped: a rigid shaft) through the same builder: its patch
+    loads push the raceway inwards (resultant -chord factor along e_r, as the outer ring's +), its condensed model
+    equals the direct FE Newton (0.1 % of Q_max), and both rings' compliances add: each ring alone lowers Q_max
+    below the rigid rings' and both together lower it further."""
+    r_in, bore = 0.5 * 54.991e-3, 22.5e-3
+    spec = RingMeshSpec(r_in, bore, WIDTH, L, Z, NS, 1.0e-3 / r_in, between=1, ends=1, radial=1)
+    fe = rc.RingFE(spec, STEEL, "housing", np.pi)
+    system = rc.ring_system(fe)
+    inner = rc.ring_compliance(fe, system=system)
+    B, psi = system.B, row().psi
+    j = np.repeat(np.arange(Z), NS)
+    along = B[0::3].sum(axis=0) * np.cos(psi[j]) + B[1::3].sum(axis=0) * np.sin(psi[j])
+    outer_system, _ = ring
+    along_out = outer_system.B[0::3].sum(axis=0) * np.cos(psi[j]) + outer_system.B[1::3].sum(axis=0) * np.sin(psi[j])
+    assert np.all(along < -0.999) and np.all(along_out > 0.999)
+    cond = bc.solve(row(), inner.C, LOAD)
+    direct = bc.solve_direct(row(), system.K, system.free, system.B, LOAD)
+    assert np.abs(cond.roller_loads - direct.roller_loads).max() < 1e-3 * cond.q_max
+    outer = rc.ring_compliance(rc.RingFE(coarse_spec(), STEEL, "housing", np.pi))
+    q = [bc.solve(row(), C, LOAD).q_max for C in (None, inner.C, outer.C, inner.C + outer.C)]
+    assert q[3] < min(q[1], q[2]) and max(q[1], q[2]) < q[0]
+
+
 def test_newton_failure_and_bad_input_raise(ring):
     _, comp = ring
     with pytest.raises(ConvergenceError, match="3D condensed bearing"):

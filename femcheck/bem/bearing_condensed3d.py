@@ -15,7 +15,9 @@ outer raceway has given way:
     c_jk = G_r/2 + 2 P(x_k) + x_k tan(theta_mis) cos psi_j,
     equilibrium   G^T q = F = (F_x, F_y[, M_x, M_y]),
 
-with C (m/N) the condensed raceway compliance (patch-averaged radial displacement per unit slice load), G_r the
+with C (m/N) the condensed raceway compliance (patch-averaged radial displacement per unit slice load, away
+from the roller; the sum C_outer + C_inner when both rings are elastic: the inner ring on a rigid shaft is the
+same builder with its bore clamped), G_r the
 diametral clearance, P the ISO logarithmic crown drop of the roller (TS eqs 42-44, both contacts: factor 2) and
 theta_mis a prescribed misalignment of the inner ring (its tilt DOFs are then held); with ``free_tilt`` the tilt
 is solved for the applied moments instead. C = 0 is the rigid-ring ISO/TS 16281 model.
