@@ -50,7 +50,7 @@ def level(m: int, slices: int, housing: float) -> dict:
                      "rigid_q_max": rigid.q_max, "rigid_roller_loads": rigid.roller_loads.tolist(),
                      "max_slice": float(sol.slice_loads.max()), "rigid_max_slice": float(rigid.slice_loads.max()),
                      "delta_x": float(sol.u[0])})
-    return {"refine": m, "slices": slices, "housing_half_angle": housing, "dofs": comp.n_dofs, "cells": comp.cells,
+    return {"refine": m, "slices": slices, "housing_half_angle": housing, "dofs": int(comp.n_dofs), "cells": int(comp.cells),
             "build_s": build, "times": comp.times, "backend": comp.backend, "asymmetry": comp.asymmetry,
             "peak_rss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6, "runs": runs,
             "c_self": float(comp.C[slices // 2, slices // 2]),
@@ -77,7 +77,7 @@ def main() -> dict:
                                                for lv in out["arc"]]).as_dict()
                              for k in ("c_self", "c_roller", "q_max")}
     OUT.mkdir(exist_ok=True)
-    (OUT / "bearing_condensed3d.json").write_text(json.dumps(out, indent=1))
+    (OUT / "bearing_condensed3d.json").write_text(json.dumps(out, indent=1, default=float))
     lines = ["| housing | m | DOFs | cells | compliance build (s) | reused solve (s) | Newton it. | Q_max (N) | "
              "rigid Q_max (N) | max slice (N) | rigid max slice (N) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for key, name in (("arc", "+-60 deg arc"), ("full", "full")):
