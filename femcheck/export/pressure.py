@@ -12,7 +12,8 @@ Estimators: 3D :func:`femcheck.qoi.symmetric_contact` (even quartic about the ce
 edges for the semi-axes), 2D :func:`femcheck.qoi.peak` (even quartic about x = 0) and :func:`femcheck.qoi.edge`;
 ``p_max_nodal`` the largest nodal value. ``approach`` (m): the rigid indenter's displacement; ``total_force``:
 the bottom reaction scaled to the full contact (x 4 for the quarter, x 2 for the half model).
-:func:`read_srb` reads the two-contact deck of srb-normal (:mod:`femcheck.export.srb`) per contact.
+:func:`read_srb` reads the two-contact deck of srb-normal (:mod:`femcheck.export.srb`) per contact,
+:func:`read_roller` the finite roller's (roller-finite, roller-crowned) centre pressure and half-width.
 """
 from __future__ import annotations
 
@@ -20,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..qoi import edge, peak, symmetric_contact
+from ..qoi import centre_value_2d, edge, peak, symmetric_contact
 from . import frd as frd_reader
 from . import inp
 
@@ -108,3 +109,27 @@ def read_srb(deck_path: Path, nodal: bool = False) -> dict[str, dict]:
             q.update(nodes_x=np.vstack([x, y, X[2]]), nodes_pressure=p)
         out[contact] = q
     return out
+
+
+def read_roller(deck_path: Path, half_width_hertz: float, length: float) -> dict[str, float]:
+    """The finite roller's quarter deck (:func:`femcheck.export.scenes.roller`): CPRESS at the block's contact-face
+    nodes, ``p_centre`` (Pa) the centre value of :func:`femcheck.qoi.centre_value_2d` over 0.5 a_H across and
+    L/8 along the roller (the window of :func:`femcheck.fem.roller_contact.centre_quantities`), ``half_width``
+    (m) the power-law edge of :func:`femcheck.qoi.edge` over the central band y < L/8, their standard errors
+    ``<q>_std``; ``half_width_hertz`` a_H (m), ``length`` L (m)."""
+    deck_path = Path(deck_path)
+    top = inp.node_sets(inp.parse(deck_path.read_text()))["NTOP"]
+    res = frd_reader.read_frd(deck_path.with_suffix(".frd"))
+    dat = frd_reader.read_dat(deck_path.with_suffix(".dat"))
+    row = {int(n): i for i, n in enumerate(res.nodes)}
+    x, y = res.coords[[row[int(n)] for n in top]].T[:2]
+    c = res.last("CONTACT")
+    cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
+    p = np.clip(np.array([cp.get(int(n), 0.0) for n in top]), 0.0, None)
+    centre = centre_value_2d(x, y, p, 0.5 * half_width_hertz, length / 8.0)
+    band = y < length / 8.0
+    width = edge(x[band], p[band], band=0.5, min_points=8, transverse=y[band])
+    return {"p_centre": centre.value, "p_centre_std": centre.std, "half_width": width.position,
+            "half_width_std": width.std, "p_max_nodal": float(p.max()),
+            "approach": float(-dat[("displacements", "NREF")][0, 3]),
+            "total_force": float(dat[("total force", "NBOTTOM")][0, 3]) * 4.0}

@@ -40,7 +40,7 @@ SHIFT = 2.5          # outer contact's bodies moved by SHIFT * D along x
 # converges in 5-6 iterations per increment. Its penetration p/K = p_max h/(1e2 E*) is 8e-4 of the Hertz approach
 # (1.4 GPa x 74 um / (1e2 x 114 GPa) = 9 nm against 11 um): below the element's discretisation error.
 SRB_PENALTY = 1.0e2
-FIRST_INCREMENT = 1.0 / 16
+FIRST_INCREMENT = 1.0 / 64  # ccx cut 1/16 back to 1/64 after 14-15 iterations at h = 0.35, 0.5 and 0.7 a
 PULL = 3.0               # spring pre-stretch in Hertz approaches (module doc)
 GROW_BELOW = 7
 
