@@ -21,9 +21,14 @@ from pathlib import Path
 
 CASES = ("hertz-point:fem", "hertz-point:fem_p2", "hertz-point:ccx-C3D10@0", "hertz-point:ccx-C3D10@1",
          "hertz-point:ccx-C3D4@0", "hertz-point:ccx-C3D4@1", "hertz-line:fem", "hertz-line:ccx-CPE6@0",
-         "hertz-line:ccx-CPE6@1", "layer-point:fem", "layer-point:fem_p2", "layer-point:fem_axisym")
+         "hertz-line:ccx-CPE6@1", "layer-point:fem", "layer-point:fem_p2", "layer-point:fem_axisym",
+         "srb-normal:fem_conformal", "srb-normal:ccx-C3D4@0", "roller-finite:fem", "roller-finite:ccx-C3D4@0",
+         "layer-line:fem", "layer-line:ccx-CPE6@0", "layer-line:ccx-CPE6@1")
 # the independent value each scene's FE quantities are set against: Hertz, or the layered half-space BEM
-COMPARATOR = {"layer-point": "bem"}
+COMPARATOR = {"layer-point": "bem", "layer-line": "bem"}
+# CalculiX rows set against: Hertz, or femcheck's FE reference where no closed form holds (srb-normal: the
+# conformal FE on the same meshes; roller-finite, layer-line: the certified FE reference)
+CCX_COMPARATOR = {"srb-normal": "fem_conformal", "roller-finite": "fem", "layer-line": "fem"}
 # CalculiX decks of hertz-point on its a/8 family (level 0 = a/8, ratio sqrt 2); hertz-line on its own levels
 CCX_OVERRIDES = {"hertz-point": {"numerics.fem_h_contact": 0.125}}
 OUT = Path(__file__).resolve().parent / "results"
@@ -32,10 +37,11 @@ CCX_CHILD = r"""
 import json, subprocess, sys, tempfile
 from pathlib import Path
 import femcheck
-from femcheck.export.pressure import read
+from femcheck.export.pressure import read, read_roller, read_srb
 from femcheck.export.write import export
 from femcheck.runner import resolve_scene
 scene, element, level, over = sys.argv[1], sys.argv[2], int(sys.argv[3]), json.loads(sys.argv[4])
+comparator = sys.argv[5]
 order = 2 if element in ("C3D10", "CPE6") else 1
 with tempfile.TemporaryDirectory() as out:
     info = export(resolve_scene(scene, over), "calculix", level, order, Path(out))
@@ -44,14 +50,22 @@ with tempfile.TemporaryDirectory() as out:
     if "Job finished" not in r.stdout:
         print("RESULT" + json.dumps({"status": "failed", "error": r.stdout[-300:]}))
         raise SystemExit(0)
-    q = read(deck)
-ref = femcheck.run(scene, over, models=["analytic"]).models["analytic"].quantities
-names = [k for k in ("p_max", "semi_axis_x", "semi_axis_y", "half_width", "approach") if k in q]
+    sc = resolve_scene(scene, over)
+    if sc.kind == "srb_contact":
+        q = {f"{k}_{c}": v for c, qc in read_srb(deck).items() for k, v in qc.items()}
+    elif sc.kind == "roller_contact":
+        a_h = femcheck.run(scene, over, models=["analytic"]).models["analytic"].quantities["half_width"]
+        q = read_roller(deck, a_h, sc["geometry.length"])
+    else:
+        q = read(deck)
+ref = femcheck.run(scene, over, models=[comparator]).models[comparator].quantities
+base = ("p_max", "p_centre", "semi_axis_x", "semi_axis_y", "half_width", "approach")
+names = [k for k in (*base, *(f"{b}_{c}" for c in ("inner", "outer") for b in base)) if k in q]
 print("RESULT" + json.dumps({"status": "ok", "error": None, "element": element,
                              "certificates": {k: {"value": q[k], "error_estimate": float("nan"), "certified": False}
                                               for k in names},
                              "n_dofs": (2 if element.startswith("CPE") else 3) * info["nodes"], "analytic": ref,
-                             "comparator": "analytic",
+                             "comparator": comparator,
                              "level": level},
                             default=float))
 """
@@ -79,7 +93,8 @@ def run_case(scene: str, model: str) -> dict:
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         if model.startswith("ccx-"):
             element, level = model[4:].split("@")
-            args = ["-c", CCX_CHILD, scene, element, level, json.dumps(CCX_OVERRIDES.get(scene, {}))]
+            args = ["-c", CCX_CHILD, scene, element, level, json.dumps(CCX_OVERRIDES.get(scene, {})),
+                    CCX_COMPARATOR.get(scene, "analytic")]
         else:
             args = ["-c", CHILD, scene, model, COMPARATOR.get(scene, "analytic")]
         proc = subprocess.Popen([sys.executable, *args], stdout=out, stderr=err, text=True)
