@@ -34,6 +34,7 @@ from ..result import ModelResult
 from ..solvers.convergence import certificate_stats, certify_levels
 from . import deck as deck_writer
 from . import pressure, run, scenes
+from .srb import SRB_PENALTY
 
 ORDER = {"point_contact": 1, "line_contact": 2, "srb_contact": 1}
 QUANTITIES = {"point_contact": ("p_max", "semi_axis_x", "semi_axis_y"), "line_contact": ("p_max", "half_width"),
@@ -96,8 +97,8 @@ def _srb_result(levels: list[dict], names: tuple[str, ...], t0: float) -> ModelR
     estimate), quantities ``<name>_<contact>`` as :func:`femcheck.fem.srb_conformal.model` names them."""
     q: dict[str, float] = {}
     stats: dict = {"code": "CalculiX (ccx, one thread)", "element": levels[-1]["element"], "pressure_from": "CPRESS",
-                   "contact": "node-to-surface (roller nodes on the raceway), linear penalty K = "
-                              "1e2 E*/h, load control", "levels": levels,
+                   "contact": f"node-to-surface (roller nodes on the raceway), linear penalty K = {SRB_PENALTY:g} "
+                              "E*/h, load control", "levels": levels,
                    "ccx_cpu_s": sum(lv["ccx_cpu_s"] for lv in levels)}
     for c in CONTACTS:
         per = [lv[c] for lv in levels]

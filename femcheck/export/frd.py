@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +37,14 @@ class Frd:
     nodes: np.ndarray                 # node ids (N,)
     coords: np.ndarray                # (N, 3) m
     blocks: list[Block] = field(default_factory=list)
+
+    @cached_property
+    def _row(self) -> dict[int, int]:
+        return {int(n): i for i, n in enumerate(self.nodes)}
+
+    def coords_of(self, nodes) -> np.ndarray:
+        """(3, n) undeformed coordinates (m) of the node ids ``nodes``."""
+        return self.coords[[self._row[int(n)] for n in nodes]].T
 
     def last(self, name: str) -> Block:
         """The last block called ``name`` (the end of the last step)."""

@@ -26,6 +26,14 @@ from . import frd as frd_reader
 from . import inp
 
 
+def _cpress(res: frd_reader.Frd, nodes: np.ndarray) -> np.ndarray:
+    """CalculiX's contact pressure CPRESS (Pa) at node ids ``nodes`` (0 where a node has no contact element);
+    KeyError where the .frd has no contact block."""
+    c = res.last("CONTACT")
+    cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
+    return np.array([cp.get(int(n), 0.0) for n in nodes])
+
+
 def read(deck_path: Path) -> dict[str, float | str]:
     """Quantities of the solved deck ``deck_path`` (its ``.frd`` and ``.dat`` beside it)."""
     deck_path = Path(deck_path)
@@ -36,18 +44,14 @@ def read(deck_path: Path) -> dict[str, float | str]:
     top = inp.node_sets(cards)["NTOP"]
     res = frd_reader.read_frd(deck_path.with_suffix(".frd"))
     dat = frd_reader.read_dat(deck_path.with_suffix(".dat"))
-    index = {int(n): i for i, n in enumerate(res.nodes)}
-    rows = np.array([index[int(n)] for n in top])
-    X = res.coords[rows].T
+    X = res.coords_of(top)
     stress = res.last("STRESS")
     srow = {int(n): i for i, n in enumerate(stress.nodes)}
     normal = "SZZ" if dim == 3 else "SYY"
     p_stress = np.array([-stress.values[srow[int(n)], stress.components.index(normal)] for n in top])
     p_cpress = np.zeros(top.size)
     try:
-        c = res.last("CONTACT")
-        cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
-        p_cpress = np.array([cp.get(int(n), 0.0) for n in top])
+        p_cpress = _cpress(res, top)
     except KeyError:
         pass
     by_stress = quadratic or dim == 2
@@ -86,15 +90,12 @@ def read_srb(deck_path: Path, nodal: bool = False) -> dict[str, dict]:
     sets = inp.node_sets(cards)
     res = frd_reader.read_frd(deck_path.with_suffix(".frd"))
     dat = frd_reader.read_dat(deck_path.with_suffix(".dat"))
-    index = {int(n): i for i, n in enumerate(res.nodes)}
-    c = res.last("CONTACT")
-    cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
     out = {}
     for contact, tag in (("inner", "I"), ("outer", "O")):
         top = sets[f"NTOP_{tag}"]
-        X = res.coords[[index[int(n)] for n in top]].T
-        x_ref = res.coords[index[int(sets[f"NREF_{tag}"][0])], 0]
-        p = np.clip(np.array([cp.get(int(n), 0.0) for n in top]), 0.0, None)
+        X = res.coords_of(top)
+        x_ref = res.coords_of(sets[f"NREF_{tag}"])[0, 0]
+        p = np.clip(_cpress(res, top), 0.0, None)
         x, y = X[0] - x_ref, X[1]
         loaded = y[p > 0]
         centre_y = 0.5 * (loaded.min() + loaded.max())
@@ -121,11 +122,8 @@ def read_roller(deck_path: Path, half_width_hertz: float, length: float) -> dict
     top = inp.node_sets(inp.parse(deck_path.read_text()))["NTOP"]
     res = frd_reader.read_frd(deck_path.with_suffix(".frd"))
     dat = frd_reader.read_dat(deck_path.with_suffix(".dat"))
-    row = {int(n): i for i, n in enumerate(res.nodes)}
-    x, y = res.coords[[row[int(n)] for n in top]].T[:2]
-    c = res.last("CONTACT")
-    cp = dict(zip(c.nodes.tolist(), c.column("CPRESS")))
-    p = np.clip(np.array([cp.get(int(n), 0.0) for n in top]), 0.0, None)
+    x, y = res.coords_of(top)[:2]
+    p = np.clip(_cpress(res, top), 0.0, None)
     centre = centre_value_2d(x, y, p, 0.5 * half_width_hertz, length / 8.0)
     band = y < length / 8.0
     width = edge(x[band], p[band], band=0.5, min_points=8, transverse=y[band])
