@@ -3,6 +3,11 @@
     flock /tmp/femcheck-cpu.lock python benchmarks/life_population.py [--grid 129] [--out benchmarks/results]
         [--diameter 0.56:1.5] [--slope 0.6:1.5] [--fractions 0.01 0.1 1]
     python benchmarks/life_population.py --report [--diameter M:GSD] [--slope M:GSD]   # population from the maps
+    python benchmarks/life_population.py --report --store    # also store it for femcheck's report
+
+``--store`` writes the maps and the population under references/indent_population/, keyed on the inputs and on the
+code of this script, of benchmarks/ehl_life.py and of the femcheck modules they import (femcheck.population_map):
+the indent-life scene's report shows them while that key is current.
 
 Maps (the expensive part, cached case by case in the JSON, resumable): I_D/I_S over the indent diameter
 Phi = 0.25, 0.4, 0.56, 0.8, 1 b and slope D/Phi = 0.3, 0.6, 1.2 at K = 4, for
@@ -19,7 +24,8 @@ Both through the same life model (c = 8, e = 10/9, h = 0, window [-2b, 2b]^2, 24
 Population (seed 004 §4.3: indents of a standard pollution test; spec B.6: median dimensionless diameter 0.56 and
 slope 0.6): diameter and slope independent and log-normal, given as median:geometric standard deviation (default
 0.56:1.5 and 0.6:1.5; the thesis prints the medians only, the spreads are an input); E[I_D/I_S] by
-femcheck.analytic.indent_risk.population_mean over the map (bilinear in the logs, the edge value held beyond it;
+femcheck.analytic.indent_risk.map_population_mean over the map (bilinear in the logs, the edge value held beyond
+it; Gauss-Legendre between the map's nodes;
 the probability mass outside the map is reported; an EHL cell refused on the grid (negative film over steep
 shoulders) takes the dry cell's value when every computed cell has EHL <= max(dry, 1), and the EHL mean is then
 reported as an upper bound), and the life ratio of a track whose windows hold an indent
@@ -38,6 +44,7 @@ from pathlib import Path
 
 import numpy as np
 
+from femcheck import population_map
 from femcheck.analytic import indent_risk
 from femcheck.bem import stress_history as sh
 from femcheck.ehl import model, transient
@@ -163,7 +170,7 @@ def population(doc: dict, diameter: tuple[float, float], slope: tuple[float, flo
             extra = {"upper_bound": True, "refused_cells_at_dry_value": [
                 [doc["phis"][i], doc["slopes"][j]] for i, j in zip(*np.nonzero(~both))]}
         f = indent_risk.map_interpolant(doc["phis"], doc["slopes"], R)
-        mean = indent_risk.population_mean(f, diameter, slope)
+        mean = indent_risk.map_population_mean(doc["phis"], doc["slopes"], R, diameter, slope)
         median = float(f(np.array([diameter[0]]), np.array([slope[0]]))[0])
         res[name] = {**extra, "mean_risk_ratio": mean, "median_indent_risk_ratio": median,
                      "life_ratio": {str(fd): indent_risk.population_life_ratio(mean, fd, e) for fd in fractions},
@@ -267,6 +274,33 @@ def write_md(doc: dict, path: Path) -> None:
     path.write_text("\n".join(L))
 
 
+def store_inputs(doc: dict) -> dict:
+    """What the stored map depends on besides code: the EHL scene at the operating point and grid, the life
+    constants, the map's axes and tolerances, the refined cells' grid and the population."""
+    from femcheck.result import _jsonable
+    ehl = EL.load_scene("ehl-indent", {**EL.POINT, "numerics.grid": doc["grid"]}).params
+    lifep = EL.life_scene(0.0).params
+    return _jsonable({"grid": doc["grid"], "phis": doc["phis"], "slopes": doc["slopes"], "K": doc["K"], "tol": TOL,
+                      "tau_ratio": TAU_RATIO, "chi": EL.CHI, "nu": EL.NU,
+                      "ehl_scene": {k: v for k, v in ehl.items() if not k.startswith(("models.", "tolerances."))},
+                      "life": {k: v for k, v in lifep.items() if k.startswith(("life.", "numerics.life_"))
+                               and k != "life.fatigue_limit"},
+                      "refined": sorted({c["refined"]["grid"] for c in doc["cases"] if "refined" in c}),
+                      "population": {k: doc["population"][k] for k in ("diameter", "slope")},
+                      "fractions": doc["fractions"]})
+
+
+def store_result(doc: dict) -> dict:
+    """The stored part: maps (null where refused), refined cells, population numbers, fatigue limit, case time."""
+    from femcheck.result import _jsonable
+    return _jsonable({"grid": doc["grid"], "phis": doc["phis"], "slopes": doc["slopes"], "K": doc["K"],
+                      "tau_inf_over_pH": doc["tau_inf_over_pH"], "T_Smax_dry_over_pH": doc["T_Smax_dry_over_pH"],
+                      "maps": maps(doc), "fractions": doc["fractions"], "population": doc["population"],
+                      "refined": [[c["phi"], c["slope"], c["refined"]["grid"]] for c in doc["cases"] if "refined" in c],
+                      "case_time_s": sum(c["time_s"] for c in doc["cases"])
+                      + sum(c["refined"]["time_s"] for c in doc["cases"] if "refined" in c)})
+
+
 def _pair(text: str) -> tuple[float, float]:
     a, b = text.split(":")
     return float(a), float(b)
@@ -280,6 +314,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--slope", default="0.6:1.5", help="median:gsd of D/Phi")
     ap.add_argument("--fractions", nargs="*", default=["0.01", "0.1", "1"])
     ap.add_argument("--report", action="store_true")
+    ap.add_argument("--store", action="store_true", help="store the maps for femcheck's report (references/)")
     ap.add_argument("--refine-refused", type=int, default=None, metavar="GRID",
                     help="solve the EHL cells refused on --grid again on GRID^2 nodes (e.g. 257)")
     args = ap.parse_args(argv)
@@ -321,6 +356,9 @@ def main(argv: list[str] | None = None) -> int:
     path.write_text(json.dumps(doc, indent=1, default=float))
     write_md(doc, out / "life_population.md")
     plot(doc, out / "life_population.png")
+    if args.store:
+        res = store_result(doc)
+        print("stored:", population_map.store(res, store_inputs(doc), run_time_s=res["case_time_s"]))
     print((out / "life_population.md").read_text())
     return 0
 

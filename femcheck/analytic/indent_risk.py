@@ -19,7 +19,9 @@ probability f_d, the indents' diameter and slope drawn from independent distribu
 E[I_D/I_S] over the population (the weakest link sums risks, eq 4.9, so the population enters linearly) and the life
 ratio L/L_S = [1 + f_d (E[I_D/I_S] - 1)]^(-1/e). femcheck integrates E[.] over log-normal diameter and slope
 distributions (medians and geometric standard deviations as inputs; seed 004's medians Phi = 0.56, D/Phi = 0.6,
-§4.3.1) by Gauss-Hermite quadrature in the logarithms (:func:`lognormal_rule`, :func:`population_mean`).
+§4.3.1) by Gauss-Hermite quadrature in the logarithms (:func:`lognormal_rule`, :func:`population_mean`) for a
+smooth I_D/I_S(Phi, D/Phi) such as eq 4.6, and over a computed map (:func:`map_interpolant`, kinked at its nodes)
+by Gauss-Legendre between the nodes (:func:`map_population_mean`).
 """
 from __future__ import annotations
 
@@ -142,6 +144,43 @@ def map_interpolant(phis: Sequence[float], slopes: Sequence[float], ratio: np.nd
         return np.exp(f(q))
 
     return ratio_at
+
+
+def map_rule(median: float, gsd: float, knots: Sequence[float], m: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights (summing to 1) of E[f(X)], ln X ~ N(ln median, ln(gsd)^2), for f smooth between the
+    ``knots`` (increasing) and constant beyond them, as :func:`map_interpolant` is along each axis: ``m``
+    Gauss-Legendre nodes in u = ln(X/median)/ln(gsd) on each interval between knots, weighted by the normal
+    density, and one node at each edge knot carrying the tail's probability. Gauss-Hermite over the whole line
+    (:func:`lognormal_rule`) converges slowly across the kinks: on seed 004's §4.3.1 dry map (fatigue limit
+    0.7 T_Smax, medians 0.56 / 0.6, gsd 1.5) 32 nodes give E[I_D/I_S] 4.2938, 64 4.2812, 256 4.2632 against
+    4.259729 from a 4001-point trapezoid rule over +-8 sigma; this rule with m = 16 gives the trapezoid's value.
+    gsd = 1: the single node ``median``."""
+    from scipy.stats import norm
+
+    if median <= 0 or gsd < 1:
+        raise ValueError(f"median must be > 0 and gsd >= 1 (got {median}, {gsd})")
+    if gsd == 1.0:
+        return np.array([float(median)]), np.array([1.0])
+    knots = np.asarray(knots, float)
+    u = np.log(knots / median) / np.log(gsd)
+    g, gw = np.polynomial.legendre.leggauss(m)
+    xs, ws = [knots[:1], knots[-1:]], [np.array([norm.cdf(u[0])]), np.array([norm.sf(u[-1])])]
+    for a, b in zip(u[:-1], u[1:]):
+        t = 0.5 * (b - a) * g + 0.5 * (a + b)
+        xs.append(median * gsd ** t)
+        ws.append(0.5 * (b - a) * gw * norm.pdf(t))
+    return np.concatenate(xs), np.concatenate(ws)
+
+
+def map_population_mean(phis: Sequence[float], slopes: Sequence[float], ratio: np.ndarray,
+                        diameter: tuple[float, float], slope: tuple[float, float], m: int = 16) -> float:
+    """E[I_D/I_S] of independent log-normal diameter and slope (median, geometric standard deviation each) over
+    the map ratio[i, j] at phis[i] x slopes[j] (:func:`map_interpolant`), by :func:`map_rule` on both axes."""
+    f = map_interpolant(phis, slopes, ratio)
+    xd, wd = map_rule(*diameter, phis, m)
+    xs, ws = map_rule(*slope, slopes, m)
+    P, S = np.meshgrid(xd, xs, indexing="ij")
+    return float(np.sum(np.outer(wd, ws) * f(P, S)))
 
 
 def mass_outside(lo: float, hi: float, median: float, gsd: float) -> float:
