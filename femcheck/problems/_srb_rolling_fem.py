@@ -50,11 +50,26 @@ def cect_pose(r: EquilibriumResult) -> dict[str, Any]:
             "inertia_force": s.inertia_force.tolist(), "inertia_moment": s.inertia_moment.tolist()}
 
 
+def pose_grids(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, half_x: float = 1.35) -> dict:
+    """The FE's contact grids at the CECT pose ``cp``: nx x ns cells per contact over x in +-half_x a_H (the
+    larger contact's), windows on the CECT pressure centres that stay on the roller (the FE meshes the roller's
+    length only), on the common cell lattice of :func:`femcheck.fem.srb_rolling.grids`; in the FE's reference
+    frame (the inner grid not yet moved with its ring)."""
+    N = float(p["load.normal"])
+    centres = {c: float(cp["s_centre"][c]) for c in sb.CONTACTS}
+    hz = fe.hertz_estimates(p, N)
+    b_max = max(h.semi_axis_y for h in hz.values())
+    room = 0.5 * fe.ROLLER_LENGTH * ns / (ns + 1) - max(abs(sc) for sc in centres.values())
+    return fe.grids(p, nx, ns, N, half_x=half_x, half_s=min(1.3, 0.99 * room / b_max), s_centre=centres)
+
+
 def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: MeshSettings,
-                 progress=None, half_x: float = 1.35) -> dict[str, Any]:
-    """FE rolling at the CECT pose ``cp`` (:func:`cect_pose`; module docstring) on nx x ns cells per contact over
-    x in +-half_x a_H (the larger contact's). Returns {"quantities", "stats", "solution"}; stats["dx"] is the
-    cell length (m)."""
+                 progress=None, half_x: float = 1.35, compliance=None) -> dict[str, Any]:
+    """FE rolling at the CECT pose ``cp`` (:func:`cect_pose`; module docstring) on the grids of
+    :func:`pose_grids`. ``compliance``: grids -> :class:`femcheck.fem.rolling_contact.RelativeCompliance`
+    (default: the FE tables of :func:`femcheck.fem.srb_rolling.compliance` with ``mesh``; e.g. the split
+    half-space + FE-correction tables of :mod:`femcheck.fem.compliance_split`). Returns {"quantities",
+    "stats", "solution", "tables"}; stats["dx"] is the cell length (m)."""
     b = sb.BearingGeometry.from_params(p)
     mu, N = float(p["friction.mu"]), float(p["load.normal"])
     Q = np.stack([b.e_x, b.e_y, b.e_z])
@@ -70,14 +85,10 @@ def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: 
     om, orr = float(x[4]), float(x[5])
     centres = {c: float(cp["s_centre"][c]) for c in sb.CONTACTS}
     hz = fe.hertz_estimates(p, N)
-    # windows on the CECT pressure centres that stay on the roller (the FE meshes the roller's length only)
-    b_max = max(h.semi_axis_y for h in hz.values())
-    room = 0.5 * fe.ROLLER_LENGTH * ns / (ns + 1) - max(abs(sc) for sc in centres.values())
-    # windows near the CECT pressure centres, on the common cell lattice (fe.grids)
-    grids = fe.grids(p, nx, ns, N, half_x=half_x, half_s=min(1.3, 0.99 * room / b_max), s_centre=centres)
+    grids = pose_grids(p, cp, nx, ns, half_x)
     if progress:
         progress(f"fem: compliances of the roller and both ring segments ({nx} x {ns} cells)")
-    tables = fe.compliance(p, grids, mesh, progress=progress)
+    tables = (fe.compliance(p, grids, mesh, progress=progress) if compliance is None else compliance(grids))
     # the contact surfaces where the bodies are (module docstring): the inner grid moved with its ring
     grids = {c: dataclasses.replace(g, centre=g.centre + shift) if c == "inner" else g for c, g in grids.items()}
     gaps = {c: gap(g, roller, rings[c]) for c, g in grids.items()}
@@ -148,4 +159,4 @@ def at_cect_pose(p: dict[str, Any], cp: dict[str, Any], nx: int, ns: int, mesh: 
              "equilibrium_residual_force_N": F.tolist(), "equilibrium_residual_moment_Nm": M.tolist(),
              "normal_forces": {c: float(res.normal_force) for c, res in sol.contacts.items()},
              "note": "FE at the CECT pose (tilt, skew, d_y, speeds) with each contact held at N; no FE equilibrium"}
-    return {"quantities": q, "stats": stats, "solution": sol}
+    return {"quantities": q, "stats": stats, "solution": sol, "tables": tables}

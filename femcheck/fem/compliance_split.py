@@ -1,0 +1,133 @@
+"""Split influence coefficients of finite bodies: the conformal half-space tables on any contact grid plus a
+finite-body correction computed once by FE and interpolated (spec srb-rolling §8.2; the decoupling of the
+contact grid from the FE mesh).
+
+The FE relative tables of :mod:`femcheck.fem.rolling_compliance` tie the contact grid to the mesh (one element
+layer per cell along s), so a fine contact grid needs a fine 3D mesh. Writing the finite-body compliance as
+
+    A_FE(c, d) = A_HS(c, d) + D(c, d),       A_HS(c, c) Boussinesq-Cerruti on the developed grid
+                                             (:func:`femcheck.fem.halfspace_tables.halfspace_table`),
+                                             A_HS(c, d) = 0 for c != d (two contacts share only the roller),
+
+the correction D carries what the half-space lacks: the bodies' finite size, their supports, the roller's global
+deflection and mean-axis motion, the cross influence of the roller's two contacts, the conformity of the curved
+surfaces. Away from the loaded cell it is a smooth function of the receiver and source positions, because the
+half-space and the body share the same singular near field (Johnson 1985 §3.2: the Boussinesq-Cerruti solution is
+the local limit of every elastic body's surface Green's function). Per unit force,
+
+    d_ij(x_I - x_J, s_I, s_J) = D_ij[I, J] / (dx ds)_c                  (m/N)
+
+is tabulated on a correction grid c (the FE's own cells) and evaluated on a target grid t by the tensor-product
+cubic spline in (lag, s_I, s_J) (the end polynomials extended over the half cell by which a finer grid's outer
+centres lie beyond the correction grid's), D_t = d (dx ds)_t. Near the loaded cell d also holds the FE's
+discretisation error of the singular response (one P2 layer per cell: up to 12 % on a single cell's self
+coefficient, cancelling to 1-2 % on smooth loads; tests/test_fe_rolling.py); that part converges with the FE mesh
+at a fixed correction grid, which is how the correction is certified (:func:`correction_difference`).
+
+Translation invariance along x (bodies of revolution, :mod:`femcheck.fem.body_compliance`) makes d a function of
+the lag; along s it is not (grooves, roller ends): d depends on s_I and s_J separately.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import make_interp_spline
+
+from ..cect.influence import CombinedConstants
+from .contact_grid import ContactGrid
+from .halfspace_tables import halfspace_table
+from .rolling_contact import RelativeCompliance
+
+Pair = tuple[str, str]
+
+
+@dataclass
+class Correction:
+    """Finite-body correction per unit force (module docstring): ``kernels[(receiver, source)]`` (3, 3, n_lag,
+    ns_r, ns_s) in m/N at lags ``lags[pair]`` (m) and profile coordinates ``s[name]`` (m) of the correction
+    grids ``grids``; ``stats`` of the FE run it came from."""
+
+    grids: dict[str, ContactGrid]
+    kernels: dict[Pair, np.ndarray]
+    lags: dict[Pair, np.ndarray]
+    stats: dict = field(default_factory=dict)
+
+    def s(self, name: str) -> np.ndarray:
+        return self.grids[name].s
+
+
+def _halfspace(grids: dict[str, ContactGrid], r: str, s: str, constants: CombinedConstants) -> tuple[float,
+                                                                                                     np.ndarray]:
+    if r == s:
+        return halfspace_table(grids[r], grids[s], constants)
+    gr, gs = grids[r], grids[s]
+    return float(gr.x[0] - gs.x[-1]), np.zeros((3, 3, gr.nx + gs.nx, gr.ns, gs.ns))
+
+
+def correction(fe: RelativeCompliance, constants: CombinedConstants) -> Correction:
+    """D = A_FE - A_HS on the FE's own grids, per unit force (m/N)."""
+    kernels, lags = {}, {}
+    for (r, s), T in fe.tables.items():
+        lag0, H = _halfspace(fe.grids, r, s, constants)
+        if abs(lag0 - fe.lag0[(r, s)]) > 1e-12:
+            raise ValueError(f"pair {(r, s)}: FE and half-space lags differ")
+        g = fe.grids[s]
+        kernels[(r, s)] = (T - H) / g.cell_area
+        lags[(r, s)] = lag0 + fe.grids[r].dx * np.arange(T.shape[2])
+    return Correction(dict(fe.grids), kernels, lags, {"fe": fe.stats})
+
+
+def _axis(values: np.ndarray, target: np.ndarray, name: str) -> None:
+    """The target points may lie beyond the correction grid's centres by at most one correction cell."""
+    step = values[1] - values[0] if values.size > 1 else np.inf
+    if target.min() < values[0] - step * 1.0001 or target.max() > values[-1] + step * 1.0001:
+        raise ValueError(f"the target grid's {name} ({target.min():.4g}, {target.max():.4g}) m lies beyond the "
+                         f"correction grid's ({values[0]:.4g}, {values[-1]:.4g}) m by more than one cell")
+
+
+def evaluate(corr: Correction, pair: Pair, lags: np.ndarray, s_r: np.ndarray, s_s: np.ndarray) -> np.ndarray:
+    """d_ij (m/N) of ``pair`` at the tensor product (lags, s_r, s_s), shape (3, 3, n_lag, ns_r, ns_s): the
+    tensor-product cubic spline (not-a-knot) through the tabulated values, one axis after the other (exact for a
+    tensor-product target; extrapolated by the end polynomials over at most one cell)."""
+    K = corr.kernels[pair]
+    axes = (corr.lags[pair], corr.s(pair[0]), corr.s(pair[1]))
+    out = K
+    for a, (ax, t, name) in enumerate(zip(axes, (lags, s_r, s_s), ("lags", "receiver s", "source s"))):
+        _axis(ax, t, name)
+        out = make_interp_spline(ax, out, k=min(3, ax.size - 1), axis=2 + a)(t, extrapolate=True)
+    return out
+
+
+def hybrid(corr: Correction, grids: dict[str, ContactGrid], constants: CombinedConstants) -> RelativeCompliance:
+    """A_HS + D on the target ``grids`` (same contact names and profiles as the correction's; any dx, ds and
+    windows inside the correction grids' to within one correction cell)."""
+    t0 = time.perf_counter()
+    for c, g in grids.items():
+        h = corr.grids[c]
+        if abs(g.radius - h.radius) > 1e-12 * h.radius or np.linalg.norm(g.centre - h.centre) > 1e-9:
+            raise ValueError(f"contact {c!r}: the target grid's profile differs from the correction grid's")
+    tables, lag0 = {}, {}
+    for (r, s) in corr.kernels:
+        l0, H = _halfspace(grids, r, s, constants)
+        lags = l0 + grids[r].dx * np.arange(H.shape[2])
+        D = evaluate(corr, (r, s), lags, grids[r].s, grids[s].s)
+        tables[(r, s)] = H + D * grids[s].cell_area
+        lag0[(r, s)] = l0
+    stats = {"model": "half-space + FE correction", "interpolation": "tensor-product cubic spline",
+             "correction_grids": {c: [g.nx, g.ns] for c, g in corr.grids.items()},
+             "correction_fe": corr.stats.get("fe", {}), "build_s": time.perf_counter() - t0}
+    return RelativeCompliance(dict(grids), tables, lag0, stats)
+
+
+def correction_difference(a: Correction, b: Correction) -> dict:
+    """How far two corrections on the same grids are apart (FE mesh convergence at a fixed correction grid): per
+    pair, the largest and the rms difference of the tabulated d relative to the largest |d| of that pair."""
+    out = {}
+    for pair, Ka in a.kernels.items():
+        Kb = b.kernels[pair]
+        scale = np.abs(Ka).max()
+        out[f"{pair[0]}<-{pair[1]}"] = {"max_rel": float(np.abs(Ka - Kb).max() / scale),
+                                        "rms_rel": float(np.sqrt(np.mean((Ka - Kb) ** 2)) / scale)}
+    return out
