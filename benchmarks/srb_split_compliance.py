@@ -10,7 +10,7 @@ element size at the contact, two layers per cell) to show how far it has converg
 
     python benchmarks/srb_split_compliance.py [--mu 0.1] [--out benchmarks/out/srb_split]
 
-Writes ``<out>/split_mu<mu>.json`` (quantities per level and model, table differences, times) and caches the FE
+Writes ``<out>/split_mu<mu>_near<n>.json`` (quantities per level and model, table differences, times) and caches the FE
 tables in ``<out>/tables_*.npz`` keyed on the grid and mesh settings.
 """
 from __future__ import annotations
@@ -25,6 +25,7 @@ import time
 import numpy as np
 
 from femcheck.cect.influence import combined_constants
+from femcheck.errors import ConvergenceError
 from femcheck.fem import compliance_split as cs
 from femcheck.fem.contact_grid import refined_count
 from femcheck.fem.rolling_compliance import MeshSettings
@@ -92,6 +93,10 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "out" / "srb_split"))
     ap.add_argument("--levels", type=int, default=3)
     ap.add_argument("--fine-mesh", action="store_true", help="also the correction on a refined FE mesh")
+    ap.add_argument("--near", type=int, default=2, help="near-field fill of the correction (cells; 0: none)")
+    ap.add_argument("--base", default="halfspace", choices=cs.BASES, help="analytic part of the split")
+    ap.add_argument("--mesh-study", type=int, default=0, metavar="M",
+                    help="the pure FE on the coarsest grid with M meshes (h_contact / m, m layers per cell, m = 1..M)")
     a = ap.parse_args(argv)
     out = pathlib.Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -115,21 +120,31 @@ def main(argv=None) -> int:
 
     def solve(k, tables, label):
         t0 = time.perf_counter()
-        o = srf.at_cect_pose(p, cp, lvs[k]["nx"], lvs[k]["ns"], lvs[k]["mesh"], half_x=lvs[k]["half_x"],
-                             compliance=lambda _g: tables)
+        try:
+            o = srf.at_cect_pose(p, cp, lvs[k]["nx"], lvs[k]["ns"], lvs[k]["mesh"], half_x=lvs[k]["half_x"],
+                                 compliance=lambda _g: tables)
+        except ConvergenceError as e:
+            log(f"{label} on {lvs[k]['nx']} x {lvs[k]['ns']}: {e}")
+            return {"error": str(e)}
         log(f"{label} on {lvs[k]['nx']} x {lvs[k]['ns']}: f_lat_sum {o['quantities']['f_lat_sum']:.5f} "
             f"({time.perf_counter() - t0:.1f} s)")
         return {q: o["quantities"][q] for q in QUANTITIES} | {"solve_s": time.perf_counter() - t0}
 
     for k in range(len(lvs)):
         results["fe"].append(solve(k, tabs[k], "pure FE"))
-    corrs = [cs.correction(t, constants) for t in tabs]
+    corrs = [cs.correction(t, constants, a.near, a.base) for t in tabs]
+    results["near"], results["base"] = a.near, a.base
     for c in range(len(lvs)):
         for k in range(len(lvs)):
             if k == c:
                 continue
             t0 = time.perf_counter()
-            h = cs.hybrid(corrs[c], grids[k], constants)
+            try:
+                h = cs.hybrid(corrs[c], grids[k], constants)
+            except ValueError as e:          # a window the correction grid does not cover
+                log(f"correction {lvs[c]['nx']} x {lvs[c]['ns']} on {lvs[k]['nx']} x {lvs[k]['ns']}: {e}")
+                results["hybrid"][f"{c}->{k}"] = {"error": str(e)}
+                continue
             build = time.perf_counter() - t0
             r = solve(k, h, f"hybrid (correction {lvs[c]['nx']} x {lvs[c]['ns']})")
             r["build_s"] = build
@@ -139,16 +154,30 @@ def main(argv=None) -> int:
         m0 = lvs[0]["mesh"]
         fine = MeshSettings(0.5 * m0.h_contact, m0.grading, m0.h_max, 2, m0.order)
         g, t = fe_tables(p, cp, lvs[0], fine, out)
-        cf = cs.correction(t, constants)
+        cf = cs.correction(t, constants, a.near, a.base)
         results["correction_mesh_refinement"] = {
             "coarse": str(m0), "fine": str(fine), "kernels": cs.correction_difference(corrs[0], cf),
             "fine_mesh_pure_fe": solve(0, t, "pure FE on the fine mesh")}
         for k in range(1, len(lvs)):
-            h = cs.hybrid(cf, grids[k], constants)
+            try:
+                h = cs.hybrid(cf, grids[k], constants)
+            except ValueError as e:
+                results["hybrid"][f"0fine->{k}"] = {"error": str(e)}
+                continue
             r = solve(k, h, "hybrid (fine-mesh correction)")
             r["table_difference"] = table_difference(h, tabs[k])
             results["hybrid"][f"0fine->{k}"] = r
-    path = out / f"split_mu{a.mu:g}.json"
+    if a.mesh_study:
+        m0, study = lvs[0]["mesh"], []
+        for m in range(1, a.mesh_study + 1):
+            mesh = MeshSettings(m0.h_contact / m, m0.grading, m0.h_max, m, m0.order)
+            t0 = time.perf_counter()
+            _, t = fe_tables(p, cp, lvs[0], mesh, out)
+            r = solve(0, t, f"pure FE, mesh h/{m}, {m} layers per cell")
+            r.update({"m": m, "n_dofs": t.stats.get("n_dofs"), "tables_s": time.perf_counter() - t0 - r["solve_s"]})
+            study.append(r)
+        results["fixed_grid_mesh_study"] = study
+    path = out / f"split_mu{a.mu:g}_near{a.near}_{a.base}.json"
     path.write_text(json.dumps(results, indent=1, default=str))
     log(f"wrote {path}")
     return 0

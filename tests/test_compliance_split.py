@@ -52,7 +52,7 @@ def grids_of(nx, ns):
 
 def test_correction_is_the_finite_body_minus_half_space_per_unit_force():
     g = grids_of(9, 17)
-    corr = cs.correction(synthetic_fe(g), CONSTANTS)
+    corr = cs.correction(synthetic_fe(g), CONSTANTS, near=0)
     for pair, K in corr.kernels.items():
         L, SR, SS = np.meshgrid(corr.lags[pair], g[pair[0]].s, g[pair[1]].s, indexing="ij")
         exact = np.stack([np.stack([smooth_kernel(pair, i, j, L, SR, SS) for j in range(3)]) for i in range(3)])
@@ -64,7 +64,7 @@ def test_hybrid_on_the_correction_grid_is_the_fe():
     """Cubic interpolation through its own nodes: the hybrid on the correction's grid is the FE (to round-off)."""
     g = grids_of(9, 17)
     f = synthetic_fe(g)
-    h = cs.hybrid(cs.correction(f, CONSTANTS), g, CONSTANTS)
+    h = cs.hybrid(cs.correction(f, CONSTANTS, near=0), g, CONSTANTS)
     for pair, T in f.tables.items():
         assert h.lag0[pair] == f.lag0[pair]
         assert np.abs(h.tables[pair] - T).max() <= 1e-9 * np.abs(T).max(), pair
@@ -78,7 +78,7 @@ def test_hybrid_on_a_finer_grid_carries_the_correction_and_the_cross_influence(t
     finer grid's outer centres lie beyond the coarse ones the cubic is extrapolated (error (h/L)^4 / 24 ~ 1e-6);
     along s (h = 1.45 mm, a quadratic in s) exact. 1e-5 of the largest entry."""
     g0, g1 = grids_of(9, 17), grids_of(*target)
-    corr = cs.correction(synthetic_fe(g0), CONSTANTS)
+    corr = cs.correction(synthetic_fe(g0), CONSTANTS, near=0)
     h = cs.hybrid(corr, g1, CONSTANTS)
     f1 = synthetic_fe(g1)
     for pair, T in f1.tables.items():
@@ -93,3 +93,28 @@ def test_target_beyond_the_correction_grid_is_refused():
     wide = fe.grids(SRB, 9, 17, 5500.0, half_x=2.0)
     with pytest.raises(ValueError, match="beyond the correction grid"):
         cs.hybrid(corr, wide, CONSTANTS)
+
+
+def test_near_field_fill_removes_the_fe_pattern_and_keeps_a_harmonic_correction():
+    """The near-field fill (|lag|, |s_I - s_J| <= 2 cells of a self pair) returns a discrete-harmonic correction
+    (affine in lag and s_J, plus lag s_J) exactly, whatever the FE put on the loaded cell and its neighbours (a
+    +-12 % pattern of the self coefficient, as the one-layer P2 mesh gives: tests/test_fe_rolling.py), and leaves
+    every entry outside the zone and every cross pair untouched."""
+    g = grids_of(9, 17)
+    f = synthetic_fe(g)
+    corr0 = cs.correction(f, CONSTANTS, near=0)
+    pair = ("inner", "inner")
+    lags = corr0.lags[pair]
+    L, SR, SS = np.meshgrid(lags, g["inner"].s, g["inner"].s, indexing="ij")
+    harmonic = 3e-10 * (1.0 + L / L_X + 0.5 * SS / L_S + (L / L_X) * (SS / L_S))
+    H = halfspace_table(g["inner"], g["inner"], CONSTANTS)[1]
+    k = np.rint(lags / g["inner"].dx).astype(int)
+    I, J = np.meshgrid(np.arange(17), np.arange(17), indexing="ij")
+    zone = (np.abs(k)[:, None, None] <= 2) & (np.abs(I - J) <= 2)[None]
+    pattern = np.where(zone, 0.12 * H[2, 2, np.argmin(np.abs(k))][None] * np.cos(np.pi * (k[:, None, None] + J)), 0)
+    tables = dict(f.tables)
+    tables[pair] = H + (harmonic[None, None] + pattern[None, None]) * g["inner"].cell_area
+    fe_like = RelativeCompliance(f.grids, tables, f.lag0, {})
+    K = cs.correction(fe_like, CONSTANTS, near=2).kernels
+    assert np.abs(K[pair] - harmonic[None, None]).max() <= 1e-9 * np.abs(harmonic).max()
+    assert np.array_equal(K[("inner", "outer")], corr0.kernels[("inner", "outer")])

@@ -58,25 +58,85 @@ class Correction:
         return self.grids[name].s
 
 
-def _halfspace(grids: dict[str, ContactGrid], r: str, s: str, constants: CombinedConstants) -> tuple[float,
-                                                                                                     np.ndarray]:
-    if r == s:
-        return halfspace_table(grids[r], grids[s], constants)
+BASES = ("halfspace", "blanco", "rotated_response")
+
+
+def _halfspace(grids: dict[str, ContactGrid], r: str, s: str, constants: CombinedConstants,
+               base: str = "halfspace") -> tuple[float, np.ndarray]:
+    """The analytic part on a pair: the developed half-space (``base`` "halfspace") or the angle-corrected
+    coefficients of :mod:`femcheck.cect.influence_conformal` ("blanco", "rotated_response": the normal turning
+    along the groove profile of radius r_g, s/r_g), zero between two contacts."""
     gr, gs = grids[r], grids[s]
-    return float(gr.x[0] - gs.x[-1]), np.zeros((3, 3, gr.nx + gs.nx, gr.ns, gs.ns))
+    if r != s:
+        return float(gr.x[0] - gs.x[-1]), np.zeros((3, 3, gr.nx + gs.nx, gr.ns, gs.ns))
+    if base == "halfspace":
+        return halfspace_table(gr, gs, constants)
+    from ..cect.influence_conformal import AXES, kernel
+
+    lag0 = float(gr.x[0] - gs.x[-1])
+    lags = lag0 + gr.dx * np.arange(gr.nx + gs.nx)
+    ts = gr.s[:, None] - gs.s[None, :]
+    T = np.empty((3, 3, lags.size, gr.ns, gs.ns))
+    for i in range(3):
+        for j in range(3):
+            T[i, j] = kernel(AXES[i], AXES[j], lags[:, None, None], ts[None], gr.dx, gr.ds, constants, base,
+                             gr.radius)
+    return lag0, T
 
 
-def correction(fe: RelativeCompliance, constants: CombinedConstants) -> Correction:
-    """D = A_FE - A_HS on the FE's own grids, per unit force (m/N)."""
+def correction(fe: RelativeCompliance, constants: CombinedConstants, near: int = 2,
+               base: str = "halfspace") -> Correction:
+    """D = A_FE - A_HS on the FE's own grids, per unit force (m/N). ``near`` > 0: on the self pairs the values
+    within ``near`` cells of the loaded cell (|lag| <= near dx and |s_I - s_J| <= near ds) are replaced by the
+    harmonic fill of their surroundings (:func:`fill_near_field`): there D is the FE's discretisation error of
+    the singular response (module docstring), a pattern of the FE's own cells that no other grid shares;
+    ``near`` = 0 keeps it (the hybrid then reproduces the FE on its own grid)."""
     kernels, lags = {}, {}
     for (r, s), T in fe.tables.items():
-        lag0, H = _halfspace(fe.grids, r, s, constants)
+        lag0, H = _halfspace(fe.grids, r, s, constants, base)
         if abs(lag0 - fe.lag0[(r, s)]) > 1e-12:
             raise ValueError(f"pair {(r, s)}: FE and half-space lags differ")
         g = fe.grids[s]
-        kernels[(r, s)] = (T - H) / g.cell_area
+        K = (T - H) / g.cell_area
         lags[(r, s)] = lag0 + fe.grids[r].dx * np.arange(T.shape[2])
-    return Correction(dict(fe.grids), kernels, lags, {"fe": fe.stats})
+        if r == s and near > 0:
+            K = fill_near_field(K, lags[(r, s)] / g.dx, near)
+        kernels[(r, s)] = K
+    return Correction(dict(fe.grids), kernels, lags, {"fe": fe.stats, "near": near, "base": base})
+
+
+def fill_near_field(K: np.ndarray, lag_cells: np.ndarray, near: int) -> np.ndarray:
+    """K (3, 3, n_lag, ns, ns) of a self pair with the entries |lag| <= near, |I - J| <= near replaced, for each
+    component pair and receiver row I, by the solution of the discrete Laplace equation in (lag, s_J) whose
+    boundary values are the surrounding entries (Dirichlet; at the table's s edge the second difference along
+    the lag only). Functions affine in lag and s_J and their product are kept exactly."""
+    from scipy.sparse import lil_matrix
+    from scipy.sparse.linalg import spsolve
+
+    out = K.copy()
+    n_lag, ns = K.shape[2], K.shape[4]
+    kl = np.flatnonzero(np.abs(lag_cells) <= near + 1e-9)
+    for I in range(ns):
+        js = np.arange(max(0, I - near), min(ns, I + near + 1))
+        unknown = [(k, j) for k in kl for j in js]
+        index = {u: q for q, u in enumerate(unknown)}
+        A = lil_matrix((len(unknown), len(unknown)))
+        B = np.zeros((len(unknown), 3, 3))
+        for q, (k, j) in enumerate(unknown):
+            for dk, dj in ((1, 0), (0, 1)):
+                pair = ((k + dk, j + dj), (k - dk, j - dj))
+                if not all(0 <= kk < n_lag and 0 <= jj < ns for kk, jj in pair):
+                    continue            # at the table's edge: the second difference along the other axis only
+                for kk, jj in pair:
+                    A[q, q] += 1.0
+                    if (kk, jj) in index:
+                        A[q, index[(kk, jj)]] -= 1.0
+                    else:
+                        B[q] += K[:, :, kk, I, jj]
+        X = spsolve(A.tocsc(), B.reshape(len(unknown), 9)).reshape(len(unknown), 3, 3)
+        for q, (k, j) in enumerate(unknown):
+            out[:, :, k, I, j] = X[q]
+    return out
 
 
 def _axis(values: np.ndarray, target: np.ndarray, name: str) -> None:
@@ -109,13 +169,14 @@ def hybrid(corr: Correction, grids: dict[str, ContactGrid], constants: CombinedC
         if abs(g.radius - h.radius) > 1e-12 * h.radius or np.linalg.norm(g.centre - h.centre) > 1e-9:
             raise ValueError(f"contact {c!r}: the target grid's profile differs from the correction grid's")
     tables, lag0 = {}, {}
+    base = corr.stats.get("base", "halfspace")
     for (r, s) in corr.kernels:
-        l0, H = _halfspace(grids, r, s, constants)
+        l0, H = _halfspace(grids, r, s, constants, base)
         lags = l0 + grids[r].dx * np.arange(H.shape[2])
         D = evaluate(corr, (r, s), lags, grids[r].s, grids[s].s)
         tables[(r, s)] = H + D * grids[s].cell_area
         lag0[(r, s)] = l0
-    stats = {"model": "half-space + FE correction", "interpolation": "tensor-product cubic spline",
+    stats = {"model": f"{base} + FE correction", "interpolation": "tensor-product cubic spline",
              "correction_grids": {c: [g.nx, g.ns] for c, g in corr.grids.items()},
              "correction_fe": corr.stats.get("fe", {}), "build_s": time.perf_counter() - t0}
     return RelativeCompliance(dict(grids), tables, lag0, stats)
