@@ -192,3 +192,46 @@ def correction_difference(a: Correction, b: Correction) -> dict:
         out[f"{pair[0]}<-{pair[1]}"] = {"max_rel": float(np.abs(Ka - Kb).max() / scale),
                                         "rms_rel": float(np.sqrt(np.mean((Ka - Kb) ** 2)) / scale)}
     return out
+
+
+def _tent(nodes: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(n_points, n_nodes) linear-interpolation weights on uniform ``nodes`` (clamped at the ends): the transpose
+    spreads point values onto the nodes keeping their sum and, inside, their first moment."""
+    h = nodes[1] - nodes[0] if nodes.size > 1 else 1.0
+    t = np.clip((points - nodes[0]) / h, 0.0, nodes.size - 1.0)
+    i0 = np.minimum(np.floor(t).astype(int), max(nodes.size - 2, 0))
+    w1 = t - i0
+    W = np.zeros((points.size, nodes.size))
+    rows = np.arange(points.size)
+    W[rows, i0] = 1.0 - w1
+    if nodes.size > 1:
+        W[rows, i0 + 1] += w1
+    return W
+
+
+def correction_field(corr: Correction, tractions: dict[str, tuple[ContactGrid, np.ndarray]],
+                     receivers: dict[str, ContactGrid]) -> dict[str, np.ndarray]:
+    """Displacement (3, nx, ns) (m, local components of each receiving grid) that the finite-body correction
+    adds at the cell centres of ``receivers`` under ``tractions`` (name -> (grid, p (3, nx, ns) in Pa on body 1,
+    local components)), on any grids of the correction's profiles (frames as the correction grids'): the cell
+    forces p dx ds are spread onto the correction grid's cell centres by linear weights (sum and first moment
+    kept: error O(h_c^2 d'') of a smooth d), the correction's own tables act there, and the result is carried to
+    the receivers by the cubic spline in (x, s). For the fine contact grids the FE tables cannot reach."""
+    forces = {}
+    for name, (g, p) in tractions.items():
+        c = corr.grids[name]
+        Wx, Ws = _tent(c.x, g.x), _tent(c.s, g.s)
+        forces[name] = np.einsum("ia,jb,cij->cab", Wx, Ws, np.asarray(p, dtype=float) * g.cell_area)
+    out = {}
+    for r, gr in receivers.items():
+        c = corr.grids[r]
+        u = np.zeros((3, c.nx, c.ns))
+        for s, F in forces.items():
+            K, n_s = corr.kernels[(r, s)], corr.grids[s].nx
+            k = np.arange(c.nx)[:, None] - np.arange(n_s)[None, :] + n_s - 1        # lag index (receiver, source)
+            u += np.einsum("ijabIJ,jbJ->iaI", K[:, :, k], F)
+        for axis, (nodes, t) in enumerate(((c.x, gr.x), (c.s, gr.s))):
+            _axis(nodes, t, "receiver x" if axis == 0 else "receiver s")
+            u = make_interp_spline(nodes, u, k=min(3, nodes.size - 1), axis=1 + axis)(t, extrapolate=True)
+        out[r] = u
+    return out
