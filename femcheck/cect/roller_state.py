@@ -44,7 +44,10 @@ class RollerProblem:
     """The physical data of one roller equilibrium: ``bearing`` geometry, combined elastic ``constants``,
     friction ``mu``, ring speeds ``omega_inner``, ``omega_outer`` (rad/s, about +Y), target inner normal load
     ``load`` N (N), ``approach_direction`` "normal" (e_z) or "radial" (Z), additional force / moment on the
-    roller ``force_add`` (N), ``moment_add`` (N m) in B (cage, churning: 0 in the paper)."""
+    roller ``force_add`` (N), ``moment_add`` (N m) in B (cage, churning: 0 in the paper). ``offsets``: optional
+    (contact, ContactInput) -> (gap (nx, ns) in m, slip (2, nx, ns) in m/s) added to the exact gap and the
+    rigid slip of every contact solve: displacements the half-space coefficients do not carry (the finite
+    bodies' correction, :mod:`femcheck.fem.srb_finite_body`)."""
 
     bearing: sb.BearingGeometry
     constants: CombinedConstants
@@ -55,6 +58,7 @@ class RollerProblem:
     approach_direction: str = "normal"
     force_add: tuple[float, float, float] = (0.0, 0.0, 0.0)
     moment_add: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    offsets: object = field(default=None, compare=False)
 
     @property
     def approach_vector(self) -> np.ndarray:
@@ -211,9 +215,12 @@ def evaluate(problem: RollerProblem, num: Numerics, grids: GridSpec, x, delta: f
         hz_approach = None
         if w is None:
             hz_approach = problem.hertz()[c].approach
+        gap, slip = ci.gap, np.stack([ci.slip.wx, ci.slip.ws])
+        if problem.offsets is not None:
+            dg, dw = problem.offsets(c, ci)
+            gap, slip = gap + dg, slip + dw
         try:
-            res = solve_conformal(ci.grid.grid, ci.gap, problem.constants, problem.mu,
-                                  np.stack([ci.slip.wx, ci.slip.ws]), ci.speeds.reference,
+            res = solve_conformal(ci.grid.grid, gap, problem.constants, problem.mu, slip, ci.speeds.reference,
                                   ci.speeds.kappa if num.variable_dq else None, s=ci.grid.s,
                                   influence=num.influence, radius=ci.ring.groove_radius, tol=num.tangential_tol,
                                   normal_tol=num.normal_tol, tangential_solver=num.solver, warm=w,

@@ -209,29 +209,42 @@ def _tent(nodes: np.ndarray, points: np.ndarray) -> np.ndarray:
     return W
 
 
-def correction_field(corr: Correction, tractions: dict[str, tuple[ContactGrid, np.ndarray]],
-                     receivers: dict[str, ContactGrid]) -> dict[str, np.ndarray]:
-    """Displacement (3, nx, ns) (m, local components of each receiving grid) that the finite-body correction
-    adds at the cell centres of ``receivers`` under ``tractions`` (name -> (grid, p (3, nx, ns) in Pa on body 1,
-    local components)), on any grids of the correction's profiles (frames as the correction grids'): the cell
-    forces p dx ds are spread onto the correction grid's cell centres by linear weights (sum and first moment
-    kept: error O(h_c^2 d'') of a smooth d), the correction's own tables act there, and the result is carried to
-    the receivers by the cubic spline in (x, s). For the fine contact grids the FE tables cannot reach."""
+def coarse_field(corr: Correction, tractions: dict[str, tuple[ContactGrid, np.ndarray]]) -> dict[str, np.ndarray]:
+    """The correction's displacement (3, nx_c, ns_c) at the correction grids' cell centres under ``tractions``
+    (name -> (grid, p (3, nx, ns) in Pa on body 1, local components) on any grid of the correction's profiles):
+    the cell forces p dx ds spread onto the correction cells by linear weights (sum and first moment kept: error
+    O(h_c^2 d'') of a smooth d), then the correction's own tables."""
     forces = {}
     for name, (g, p) in tractions.items():
         c = corr.grids[name]
         Wx, Ws = _tent(c.x, g.x), _tent(c.s, g.s)
         forces[name] = np.einsum("ia,jb,cij->cab", Wx, Ws, np.asarray(p, dtype=float) * g.cell_area)
     out = {}
-    for r, gr in receivers.items():
-        c = corr.grids[r]
+    for r, c in corr.grids.items():
         u = np.zeros((3, c.nx, c.ns))
         for s, F in forces.items():
             K, n_s = corr.kernels[(r, s)], corr.grids[s].nx
             k = np.arange(c.nx)[:, None] - np.arange(n_s)[None, :] + n_s - 1        # lag index (receiver, source)
             u += np.einsum("ijabIJ,jbJ->iaI", K[:, :, k], F)
-        for axis, (nodes, t) in enumerate(((c.x, gr.x), (c.s, gr.s))):
-            _axis(nodes, t, "receiver x" if axis == 0 else "receiver s")
-            u = make_interp_spline(nodes, u, k=min(3, nodes.size - 1), axis=1 + axis)(t, extrapolate=True)
         out[r] = u
     return out
+
+
+def field_at(corr: Correction, coarse: np.ndarray, name: str, x: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """A coarse field (3, nx_c, ns_c) of contact ``name`` (:func:`coarse_field`) at the points x (nx,) and s (ns,)
+    (m, tensor product) by the cubic spline: (3, nx, ns)."""
+    c = corr.grids[name]
+    u = coarse
+    for axis, (nodes, t) in enumerate(((c.x, np.asarray(x, dtype=float)), (c.s, np.asarray(s, dtype=float)))):
+        _axis(nodes, t, "receiver x" if axis == 0 else "receiver s")
+        u = make_interp_spline(nodes, u, k=min(3, nodes.size - 1), axis=1 + axis)(t, extrapolate=True)
+    return u
+
+
+def correction_field(corr: Correction, tractions: dict[str, tuple[ContactGrid, np.ndarray]],
+                     receivers: dict[str, ContactGrid]) -> dict[str, np.ndarray]:
+    """Displacement (3, nx, ns) (m, local components of each receiving grid) that the finite-body correction
+    adds at the cell centres of ``receivers`` under ``tractions`` (:func:`coarse_field`, then :func:`field_at`):
+    for the fine contact grids the FE tables cannot reach."""
+    coarse = coarse_field(corr, tractions)
+    return {r: field_at(corr, coarse[r], r, g.x, g.s) for r, g in receivers.items()}
