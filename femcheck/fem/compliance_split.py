@@ -69,19 +69,7 @@ def _halfspace(grids: dict[str, ContactGrid], r: str, s: str, constants: Combine
     gr, gs = grids[r], grids[s]
     if r != s:
         return float(gr.x[0] - gs.x[-1]), np.zeros((3, 3, gr.nx + gs.nx, gr.ns, gs.ns))
-    if base == "halfspace":
-        return halfspace_table(gr, gs, constants)
-    from ..cect.influence_conformal import AXES, kernel
-
-    lag0 = float(gr.x[0] - gs.x[-1])
-    lags = lag0 + gr.dx * np.arange(gr.nx + gs.nx)
-    ts = gr.s[:, None] - gs.s[None, :]
-    T = np.empty((3, 3, lags.size, gr.ns, gs.ns))
-    for i in range(3):
-        for j in range(3):
-            T[i, j] = kernel(AXES[i], AXES[j], lags[:, None, None], ts[None], gr.dx, gr.ds, constants, base,
-                             gr.radius)
-    return lag0, T
+    return halfspace_table(gr, gs, constants, base)
 
 
 def correction(fe: RelativeCompliance, constants: CombinedConstants, near: int = 2,

@@ -1,7 +1,7 @@
 """Boussinesq-Cerruti influence tables in the layout of the FE compliance tables (:mod:`femcheck.fem.body_compliance`),
-for the checks of the FE rolling reference only: the planar large-body limit of the FE coefficients, and the FE
-contact solver against the planar exact theory on identical discrete equations. The FE reference itself never
-uses them.
+for the checks of the FE rolling reference (the planar large-body limit of the FE coefficients, the FE contact
+solver against the planar exact theory on identical discrete equations) and as the analytic part of the split
+finite-body coefficients (:mod:`femcheck.fem.compliance_split`). The pure FE reference never uses them.
 
 T[i, j, k, I, J] = A_ij(lag0 + k dx, s_I - s_J) of :func:`femcheck.cect.influence.influence` (collocation at the
 receiving element's centre, uniform traction on the source element; components x, s -> y, n -> z).
@@ -10,23 +10,24 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..cect.influence import CombinedConstants, influence
+from ..cect.influence import CombinedConstants
+from ..cect.influence_conformal import AXES, kernel
 from .contact_grid import ContactGrid
 from .rolling_contact import RelativeCompliance
 
-_AXES = "xyz"
-
-
-def halfspace_table(receiver: ContactGrid, source: ContactGrid, constants: CombinedConstants) -> tuple[float, np.ndarray]:
-    """(lag0, T) with T (3, 3, n_r + n_s, ns_r, ns_s) in m/Pa (developed half-space: s as a planar coordinate)."""
+def halfspace_table(receiver: ContactGrid, source: ContactGrid, constants: CombinedConstants,
+                    option: str = "halfspace") -> tuple[float, np.ndarray]:
+    """(lag0, T) with T (3, 3, n_r + n_s, ns_r, ns_s) in m/Pa: the developed half-space (s as a planar coordinate)
+    or, with ``option`` "blanco" / "rotated_response", the angle-corrected coefficients of
+    :func:`femcheck.cect.influence_conformal.kernel` on the receiver's profile radius."""
     lag0 = float(receiver.x[0] - source.x[-1])
     lags = lag0 + receiver.dx * np.arange(receiver.nx + source.nx)
     ds = receiver.s[:, None] - source.s[None, :]
     T = np.empty((3, 3, lags.size, receiver.ns, source.ns))
     for i in range(3):
         for j in range(3):
-            T[i, j] = influence(_AXES[i] + _AXES[j], lags[:, None, None], ds[None], receiver.dx, receiver.ds,
-                                constants)
+            T[i, j] = kernel(AXES[i], AXES[j], lags[:, None, None], ds[None], receiver.dx, receiver.ds, constants,
+                             option, receiver.radius)
     return lag0, T
 
 

@@ -61,8 +61,9 @@ def offsets_of(corr: Correction, coarse: dict[str, np.ndarray]):
     def offsets(c: str, ci) -> tuple[np.ndarray, np.ndarray]:
         g = ci.grid
         dx = float(g.x[1] - g.x[0])
-        u = field_at(corr, coarse[c], c, g.x, g.s)
-        u_down = field_at(corr, coarse[c], c, g.x + dx, g.s)
+        # the cells and the stations one cell downstream in one spline pass
+        both = field_at(corr, coarse[c], c, np.concatenate([g.x, g.x + dx]), g.s)
+        u, u_down = both[:, :g.x.size], both[:, g.x.size:]
         kappa = np.asarray(ci.speeds.kappa, dtype=float)
         kappa = kappa[None, :] if kappa.ndim == 1 else kappa
         slip = ci.speeds.reference * kappa[None] * (u[:2] - u_down[:2]) / dx
