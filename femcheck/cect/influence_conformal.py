@@ -23,6 +23,14 @@ fixed by a test: a uniform traction field that is constant in 3D (the same vecto
 "blanco" exactly as the half-space response to that vector resolved in the receiver's frame.
 
 With either correction the normal and tangential problems couple even for identical materials (B_sn, B_ns != 0).
+
+Where the developed half-space stops being valid (groove-rolling, a ball of radius 100.3 mm in a groove 1.002
+times wider, free rolling, mu = 0.1; docs/notes/groove-deep.md): against the FE reference at solved half-angles
+of 40-45 deg "halfspace" is within 0.5 % (half-angle), 0.8 % (p_max) and 2.8 % (frictional power), "blanco"
+within 1.7 %, 1.4 % and 3.1 %: the corrections are not closer to the finite bodies. Against each other they
+differ in frictional power by 1.3 % at 30 deg, 2.6 % at 40, 3.3 % at 45, 4.8 % at 50 and 8.7 % at 60 deg (half-angle
+0.7, 1.2, 1.8, 2.2, 3.6 %): beyond 50 deg the choice of coefficients alone exceeds a 5 % band, the scene's
+applicability limit.
 """
 from __future__ import annotations
 
