@@ -27,6 +27,8 @@ import numpy as np
 from femcheck.cect.influence import combined_constants
 from femcheck.errors import ConvergenceError
 from femcheck.fem import compliance_split as cs
+from femcheck.fem.compliance_store import load as load_tables
+from femcheck.fem.compliance_store import save as save_tables
 from femcheck.fem.contact_grid import refined_count
 from femcheck.fem.rolling_compliance import MeshSettings
 from femcheck.fem.rolling_contact import RelativeCompliance
@@ -57,19 +59,6 @@ def levels(p: dict, n: int = 3) -> list[dict]:
 
 def _key(*parts) -> str:
     return hashlib.sha256(repr(parts).encode()).hexdigest()[:16]
-
-
-def save_tables(path: pathlib.Path, t: RelativeCompliance) -> None:
-    arrays = {f"T|{r}|{s}": v for (r, s), v in t.tables.items()}
-    arrays.update({f"L|{r}|{s}": np.array(v) for (r, s), v in t.lag0.items()})
-    np.savez(path, **arrays, stats=json.dumps(t.stats, default=str))
-
-
-def load_tables(path: pathlib.Path, grids: dict) -> RelativeCompliance:
-    z = np.load(path)
-    tables = {tuple(k.split("|")[1:]): z[k] for k in z.files if k.startswith("T|")}
-    lag0 = {tuple(k.split("|")[1:]): float(z[k]) for k in z.files if k.startswith("L|")}
-    return RelativeCompliance(dict(grids), tables, lag0, json.loads(str(z["stats"])))
 
 
 def fe_tables(p: dict, cp: dict, lv: dict, mesh: MeshSettings, out: pathlib.Path) -> tuple[dict, RelativeCompliance]:

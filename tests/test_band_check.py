@@ -22,7 +22,7 @@ from femcheck.errors import InputError
 from femcheck.scene import builtin_scene_files, load_scene
 
 STORED = Path(__file__).parent / "data" / "band_sweeps"
-EXPENSIVE = {"indent-life", "srb-rolling"}       # their sweeps are stored (module doc)
+EXPENSIVE = {"indent-life", "srb-rolling", "srb-rolling-finite"}       # their sweeps are stored (module doc)
 SLOW = {"creep-curve", "indent-dry"}             # 6-7 s sweeps (the 3D exact theory, the indent BEM)
 
 

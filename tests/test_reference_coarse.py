@@ -33,6 +33,10 @@ STORED = [     # (scene, model, scene overrides the reference was solved with)
     pytest.param("srb-rolling", "fem", None, id="srb-rolling", marks=pytest.mark.slow),                   # 30 s
     # Table 2's second case, stored beside the default (spec srb-rolling item 15: the FE at the mu = 0.3 pose)
     pytest.param("srb-rolling", "fem", {"friction.mu": 0.3}, id="srb-rolling-mu0.3", marks=pytest.mark.slow),
+    # the finite-body reference: its coarsest correction (11 x 15 cells, 166k DOFs) on the scene's 61 x 121 grid
+    pytest.param("srb-rolling-finite", "fem_finite_body", None, id="srb-rolling-finite", marks=pytest.mark.slow),
+    pytest.param("srb-rolling-finite", "fem_finite_body", {"friction.mu": 0.3}, id="srb-rolling-finite-mu0.3",
+                 marks=pytest.mark.slow),
     pytest.param("crb-rigid-rings", "fem", None, id="crb-rigid-rings"),
     pytest.param("crb-elastic-rings", "fem", None, id="crb-elastic-rings", marks=pytest.mark.slow),
     pytest.param("crb-housing-arc", "fem", None, id="crb-housing-arc", marks=pytest.mark.slow),

@@ -125,8 +125,9 @@ def test_scene_keys_refuse_contrast_reference_and_unknown_tolerance_model():
     assert load_scene("hertz-line", {"tolerances.fem@finest.p_max": 0.1})["tolerances.fem@finest.p_max"] == 0.1
 
 
-# slow: hertz-line (its 2D FE is solved), indent-life (pseudo-transient, 80 s), srb-rolling (6 s), hertz-point (1 s)
-SLOW_SCENES = ("hertz-line", "indent-life", "srb-rolling", "hertz-point")
+# slow: hertz-line (its 2D FE is solved), indent-life (pseudo-transient, 80 s), srb-rolling and srb-rolling-finite (6 s:
+# the CECT equilibrium on 61 x 121), hertz-point (1 s)
+SLOW_SCENES = ("hertz-line", "indent-life", "srb-rolling", "srb-rolling-finite", "hertz-point")
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_SCENES else n

@@ -50,7 +50,7 @@ from ..result import ModelResult
 from ..scene import Key, Scene, elastic, material_keys, model_keys, tolerance_key
 from . import _srb_rolling_out as out
 
-MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem")
+MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem", "fem_finite_body", "paper_fem")
 # seed 000's question: the lateral forces (their sum loads the cage and flanges), then the rolling-direction ones
 DESIGN_QUANTITIES = ("f_lat_sum", "f_lat", "f_x", "d_y")
 # Table 2's normalisation: forces divided by mu N
@@ -110,6 +110,26 @@ SCHEMA: dict[str, Key] = {
                                   hi_closed=True),
     "numerics.fem_grading": Key("float", "-", "fem: mesh grading away from the contact", lo=0.05, hi=1.0,
                                 hi_closed=True),
+    "numerics.fb_correction_cells_x": Key("int", "-", "fem_finite_body: correction cells along x on its coarsest "
+                                          "level", lo=5, hi=41, lo_closed=True, hi_closed=True),
+    "numerics.fb_correction_cells_s": Key("int", "-", "fem_finite_body: correction cells along the roller on its "
+                                          "coarsest level (ns + 1 times 1.5^k should stay an integer)", lo=7, hi=81,
+                                          lo_closed=True, hi_closed=True),
+    "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (FE mesh and correction "
+                                         "grid refined together by 1.5)", lo=1, hi=5, lo_closed=True, hi_closed=True),
+    "numerics.fb_farfield_levels": Key("int", "-", "fem_finite_body: far-field mesh levels on the coarsest "
+                                       "correction (grading and largest element divided by 1.5)", lo=1, hi=4,
+                                       lo_closed=True, hi_closed=True),
+    "numerics.fb_h_contact": Key("float", "dx", "fem_finite_body: FE element size at the contact line / the "
+                                 "correction grid's dx", lo=0.1, hi=2.0, hi_closed=True),
+    "numerics.fb_cells_x": Key("int", "-", "fem_finite_body: contact cells along x on the coarsest contact grid",
+                               lo=9, hi=201, lo_closed=True, hi_closed=True),
+    "numerics.fb_cells_s": Key("int", "-", "fem_finite_body: contact cells along s on the coarsest contact grid",
+                               lo=9, hi=401, lo_closed=True, hi_closed=True),
+    "numerics.fb_grid_levels": Key("int", "-", "fem_finite_body: contact-grid levels (refined by sqrt 2)", lo=1,
+                                   hi=6, lo_closed=True, hi_closed=True),
+    "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
+                              hi=16, lo_closed=True, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
 }
@@ -141,13 +161,29 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_ratio": 1.4142135623730951,
     "numerics.fem_h_contact": 0.7,
     "numerics.fem_grading": 0.4,
+    "numerics.fb_correction_cells_x": 9,
+    "numerics.fb_correction_cells_s": 15,
+    "numerics.fb_correction_levels": 4,
+    "numerics.fb_farfield_levels": 3,
+    "numerics.fb_h_contact": 0.7,
+    "numerics.fb_cells_x": 41,
+    "numerics.fb_cells_s": 81,
+    "numerics.fb_grid_levels": 4,
+    "numerics.fb_phases": 4,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal", "kinematics.inner_ring_speed")
 # fem: a stored reference (three levels with certificates; the CECT pose it is solved at is part of its inputs)
 DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "materials.", "load.", "friction.", "kinematics.",
                                                "roller.", "equilibrium.", "numerics."), "reference": True,
-                                    "coarse": {"numerics.fem_levels": 1}}}
+                                    "coarse": {"numerics.fem_levels": 1}},
+                            # fem_finite_body: its coarse re-solve is the coarsest correction on the scene's grid
+                            "fem_finite_body": {"params": ("geometry.", "materials.", "load.", "friction.",
+                                                           "kinematics.", "roller.", "equilibrium.", "numerics."),
+                                                "reference": True,
+                                                "coarse": {"numerics.fb_correction_levels": 1,
+                                                           "numerics.fb_farfield_levels": 1,
+                                                           "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1}}}
 
 
 def bearing(p: dict[str, Any]) -> sb.BearingGeometry:
@@ -246,16 +282,21 @@ def cect(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("cect", quantities=q, stats=stats, fields=out.fields(r.state))
 
 
-def paper(scene: Scene, progress=None) -> ModelResult:
-    """Seed 000 Table 2, CECT column (mu 0.1 / 0.3 at 5.5 kN)."""
+def _table_2_column(scene: Scene, name: str, column: str) -> ModelResult:
     p = scene.params
     cols = out.table_2(p["friction.mu"], p["load.normal"])
     if cols is None or p["equilibrium.configuration"] != 1:
-        return ModelResult("paper", "skipped", error="seed 000 Table 2 gives configuration 1 at 5.5 kN, mu 0.1 or "
-                                                     "0.3 only")
-    return ModelResult("paper", quantities=dict(cols["cect"]),
-                       stats={"source": "Blanco-Lorenzo et al. 2022 (seed 000) Table 2, CECT column",
-                              "full_slip": cols["full_slip"], "fem": cols["fem"]})
+        return ModelResult(name, "skipped", error="seed 000 Table 2 gives configuration 1 at 5.5 kN, mu 0.1 or 0.3 "
+                                                  "only")
+    stats = {"source": f"Blanco-Lorenzo et al. 2022 (seed 000) Table 2, {column.upper()} column"}
+    if column == "cect":
+        stats.update({"full_slip": cols["full_slip"], "fem": cols["fem"]})
+    return ModelResult(name, quantities=dict(cols[column]), stats=stats)
+
+
+def paper(scene: Scene, progress=None) -> ModelResult:
+    """Seed 000 Table 2, CECT column (mu 0.1 / 0.3 at 5.5 kN)."""
+    return _table_2_column(scene, "paper", "cect")
 
 
 def _strip(scene: Scene, name: str, s0: float) -> ModelResult:
@@ -362,8 +403,33 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     return ModelResult("fem", quantities=quantities, stats=stats)
 
 
+def fem_finite_body(scene: Scene, progress=None) -> ModelResult:
+    """The roller's own equilibrium with finite-body influence coefficients (half-space + FE correction) on fine
+    contact grids, certified in two parts: the correction's FE mesh and grid, and the contact grid with the
+    lattice-phase mean (:mod:`._srb_rolling_fb`). Configuration 1 only."""
+    from . import _srb_rolling_fb
+
+    p = scene.params
+    if p["equilibrium.configuration"] != 1:
+        return ModelResult("fem_finite_body", "skipped", error="configuration 1 only (configuration 2 with the "
+                           "finite-body coefficients is not implemented)")
+    r = solved(p)
+    if r.status != 0:
+        return _not_found("fem_finite_body", r)
+    if progress:
+        progress("fem_finite_body: the roller equilibrium with the FE finite-body correction")
+    pr = problem_of(p)
+    return _srb_rolling_fb.finite_body(p, pr, numerics_of(p), pr.constants, r, progress)
+
+
+def paper_fem(scene: Scene, progress=None) -> ModelResult:
+    """Seed 000 Table 2, FEM column (Abaqus, mu 0.1 / 0.3 at 5.5 kN; no error estimate published)."""
+    return _table_2_column(scene, "paper_fem", "fem")
+
+
 MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "paper": paper, "strip": strip,
-                                                 "strip_s0": strip_s0, "full_slip": full_slip, "fem": fem}
+                                                 "strip_s0": strip_s0, "full_slip": full_slip, "fem": fem,
+                                                 "fem_finite_body": fem_finite_body, "paper_fem": paper_fem}
 
 
 def load_of(scene: Scene) -> float:

@@ -1,0 +1,208 @@
+"""The finite-body reference of the srb-rolling kind (shared helper, not a kind): the roller's own equilibrium with
+finite-body influence coefficients on fine contact grids, certified in two parts.
+
+The roller equilibrium of :mod:`femcheck.cect.roller_equilibrium` (pose, speeds, approach: seven unknowns) is
+solved with the half-space coefficients plus the FE finite-body correction D (:mod:`femcheck.fem.compliance_split`:
+the whole roller and two ring segments minus the half-space; :mod:`femcheck.fem.srb_finite_body`: the correction as
+extra gap and slip in every contact solve, a fixed point on the tractions). Three discretisations, refined apart:
+
+1. **The correction** (FE mesh and correction grid refined together): correction grids spanning the roller
+   (ns_k + 1 = (ns_0 + 1) 1.5^k cells along s, ds = L_R / (ns_k + 1); dx_k = dx_0 / 1.5^k exactly with
+   dx_0 = 2.7 a_H / nx_0, nx_k the next odd count above nx_0 1.5^k plus one cell beyond each end, which the
+   lattice phases' dilated contact windows need), the FE mesh at ``numerics.fb_h_contact`` dx_k with one element
+   layer per cell, near-field fill 2 cells; the equilibrium on the scene's contact grid
+   (``numerics.conformal_cells_*``) for each. Certified by :func:`femcheck.solvers.convergence.certify` with the
+   correction's formal order 2 (``CORRECTION_ORDER``) and the re-meshing scatter as its floor.
+2. **The far field** on the coarsest correction: the mesh grading and the largest element divided by 1.5 per
+   level (``numerics.fb_farfield_levels``), the part of the FE mesh that family 1 does not refine; certified
+   with the same floor.
+3. **The contact grid** at the finest correction: levels from ``numerics.fb_cells_x`` x ``fb_cells_s`` refining
+   by sqrt 2 with exactly geometric cell sizes, each level the mean over ``numerics.fb_phases`` lattice phases of
+   the contact's leading edge (:mod:`femcheck.cect.lattice_phase`: a single window's lateral forces snap to its
+   lattice by +-1.2 %). Certified by :func:`femcheck.solvers.convergence.certify_formal` at Kalker's first order.
+
+Combined value per quantity: the contact grid's value plus the other parts' extrapolation steps (value - finest);
+combined relative error estimate: the sum of the parts' (GCI bounds of separate discretisations; the cross term,
+the correction's effect changing with the contact grid, is carried by the grid levels at the finest correction).
+Certified when every part is.
+
+Cost: the FE tables of the correction levels depend on the geometry, materials, load (the Hertz semi-axes scale
+the grids) and mesh settings only; levels above the coarsest are kept in the result cache
+(:mod:`femcheck.cache`), so a second friction coefficient reuses them. The coarsest level is always computed: it
+is what :mod:`femcheck.reference_check` re-solves, with its meshes recorded (:mod:`femcheck.replay`).
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import time
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from .. import cache, provenance
+from ..cect import lattice_phase
+from ..cect.refinement import KALKER_ORDER
+from ..cect.roller_equilibrium import EquilibriumResult
+from ..fem import compliance_split as cs
+from ..fem import compliance_store
+from ..fem import srb_rolling as fe
+from ..fem.rolling_compliance import MeshSettings
+from ..fem.srb_finite_body import finite_body_equilibrium
+from ..result import ModelResult
+from ..solvers.convergence import Certificate, certify, certify_formal
+from . import _srb_rolling_out as out
+
+CORRECTION_RATIO = 1.5          # correction grids: ns + 1 = 16, 24, 36, 54 cells along the roller (integers)
+GRID_RATIO = math.sqrt(2.0)     # contact grids: 41 x 81, 58 x 115, 82 x 162, 116 x 229
+CORRECTION_HALF_X = 1.35        # correction window along x / a_H on the coarsest level (as the CECT's)
+CORRECTION_SPAN_S = 3.0         # along s: clipped to the roller length (fe.grids), so it spans the roller
+NEAR_FIELD = 2                  # cells of harmonic fill around the loaded cell (compliance_split.correction)
+# Formal order of the correction's approximations on its grid: the linear (tent) spreading of the contact
+# tractions onto the correction cells and the harmonic near-field fill are second order (the cubic splines
+# fourth); certify accepts observed orders within a factor 2 of it and extrapolates at the observed order.
+CORRECTION_ORDER = 2.0
+# Correction and far-field levels re-mesh the bodies: unstructured re-meshing scatters local FE quantities by
+# 0.05-0.15 % from level to level (hertz-point, docs/kinds/point_contact.md); changes below 0.2 % are that scatter,
+# no order can be observed in them (certify's floor), and the estimate is 3 x the larger of the last two changes.
+REMESH_SCATTER = 2e-3
+QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y", "tilt", "skew",
+              "friction_power_inner", "friction_power_outer", "adhesion_fraction_inner", "adhesion_fraction_outer",
+              "omega_m_deviation", "omega_R_deviation")
+
+
+def correction_grid(p: dict[str, Any], k: int) -> tuple[int, int, float, dict]:
+    """Correction level k: (nx, ns, half_x in a_H, grids) of module docstring item 1."""
+    nx0, ns0 = int(p["numerics.fb_correction_cells_x"]), int(p["numerics.fb_correction_cells_s"])
+    f = CORRECTION_RATIO ** k
+    ns = int(round((ns0 + 1) * f)) - 1
+    nx = int(math.ceil(nx0 * f - 1e-9))
+    nx += 1 - nx % 2
+    nx += 2          # a cell beyond each end: the contact windows of the lattice phases reach 1.42 a_H (+ dx)
+    half_x = CORRECTION_HALF_X * nx / (nx0 * f)
+    grids = fe.grids(p, nx, ns, float(p["load.normal"]), half_x=half_x, half_s=CORRECTION_SPAN_S)
+    return nx, ns, half_x, grids
+
+
+def mesh_of(p: dict[str, Any], far: int = 0) -> MeshSettings:
+    """FE mesh of the correction: ``fb_h_contact`` dx at the contact line, one layer per cell; far-field level
+    ``far`` divides the grading and the largest element (2 mm) by 1.5^far."""
+    f = CORRECTION_RATIO ** far
+    return MeshSettings(p["numerics.fb_h_contact"], p["numerics.fem_grading"] / (math.sqrt(2.0) * f), 2e-3 / f, 1, 2)
+
+
+def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
+    body = {q: v for q, v in sorted(p.items()) if q.startswith(("geometry.", "materials.", "load."))}
+    blob = json.dumps({"level": list(correction_grid(p, k)[:3]), "mesh": str(mesh), "params": body,
+                       "code": provenance.code_digest(("femcheck.fem.srb_rolling", "femcheck.fem.compliance_store"))},
+                      sort_keys=True, default=str)
+    return "srb-fb-tables-" + hashlib.sha256(blob.encode()).hexdigest()[:32]
+
+
+def correction_level(p: dict[str, Any], constants, k: int, far: int = 0, progress=None) -> cs.Correction:
+    """The correction of level k on far-field mesh level ``far`` (FE tables computed, or read from the result
+    cache except the coarsest (0, 0), whose meshes a stored reference records)."""
+    nx, ns, _, grids = correction_grid(p, k)
+    mesh = mesh_of(p, far)
+    reuse = k > 0 or far > 0
+    path = cache.cache_dir() / f"{_tables_key(p, k, mesh)}.npz"
+    tables = compliance_store.load(path, grids) if reuse and path.is_file() else None
+    if tables is None:
+        if progress:
+            progress(f"fem_finite_body: FE correction level {k + 1}, far field {far + 1} ({nx} x {ns} cells over "
+                     "the roller)")
+        tables = fe.compliance(p, grids, mesh)
+        if reuse:
+            compliance_store.save(path, tables)
+    return cs.correction(tables, constants, NEAR_FIELD)
+
+
+def _values(problem, r: EquilibriumResult) -> dict[str, float]:
+    q = out.quantities(problem, r)
+    return {k: float(q[k]) for k in QUANTITIES if q.get(k) is not None}
+
+
+def _combined(parts: dict[str, Certificate]) -> Certificate:
+    """Value: the contact grid's plus the other parts' extrapolation steps; relative error: the sum of the parts'
+    (each part's absolute estimate over the combined value)."""
+    grid = parts["contact grid"]
+    value = grid.value + sum(c.value - c.finest for name, c in parts.items() if name != "contact grid")
+    scale = abs(value) if value else 1.0
+    err = sum(c.error_estimate * abs(c.value) for c in parts.values()) / scale
+    note = "; ".join(f"{name}: {'certified' if c.certified else 'not certified'} ({c.note}; estimate "
+                     f"{c.error_estimate:.2%})" for name, c in parts.items())
+    return Certificate(float(value), grid.finest, grid.order, float(err), all(c.certified for c in parts.values()),
+                       note)
+
+
+def finite_body(p: dict[str, Any], problem, numerics, constants, start: EquilibriumResult,
+                progress=None) -> ModelResult:
+    """The two-part certified finite-body equilibrium (module docstring) from the half-space equilibrium
+    ``start`` on the scene's grid ``numerics``."""
+    t0 = time.perf_counter()
+    n_corr, n_grid, phases = (int(p["numerics.fb_correction_levels"]), int(p["numerics.fb_grid_levels"]),
+                              int(p["numerics.fb_phases"]))
+    n_far = int(p["numerics.fb_farfield_levels"])
+
+    def on_scene_grid(k: int, far: int, prev: EquilibriumResult) -> tuple[cs.Correction, EquilibriumResult, dict]:
+        corr = correction_level(p, constants, k, far, progress)
+        fb = finite_body_equilibrium(problem, numerics, corr, prev)
+        nx, ns, half_x, _ = correction_grid(p, k)
+        lv = {"level": k, "far_field": far, "nx": nx, "ns": ns, "h": 1.0 / CORRECTION_RATIO ** (k + far),
+              "half_x": half_x, "n_dofs": corr.stats["fe"].get("n_dofs"),
+              "fe_time_s": corr.stats["fe"].get("total_s"), "outer_iterations": fb.iterations,
+              **_values(problem, fb.result)}
+        if progress:
+            progress(f"fem_finite_body: correction level {k + 1}, far field {far + 1}: sum f_lat "
+                     f"{lv['f_lat_sum']:.5e}")
+        return corr, fb.result, lv
+
+    # the coarsest correction first, from the half-space start: level 0 of the stored reference, which
+    # reference_check re-solves alone
+    corr_levels, prev, corr = [], start, None
+    for k in range(n_corr):
+        corr, prev, lv = on_scene_grid(k, 0, prev)
+        corr_levels.append(lv)
+    far_levels, fprev = [corr_levels[0]], prev
+    for far in range(1, n_far):
+        _, fprev, lv = on_scene_grid(0, far, fprev)
+        far_levels.append(lv)
+    grid_levels = []
+    cells0 = (int(p["numerics.fb_cells_x"]), int(p["numerics.fb_cells_s"]))
+    domain0 = (float(p["numerics.conformal_domain_x"]), float(p["numerics.conformal_domain_s"]))
+    for lv in lattice_phase.levels(cells0, domain0, GRID_RATIO, n_grid):
+        samples = []
+        # phases along x only: the lateral window's phase moves sum f_lat by 0.15 % (x: 1.2 %), and dilating it
+        # would push the offset windows of mu = 0.3 past the roller's ends
+        for j, dx_ in enumerate(lattice_phase.phase_domains(lv.cells[0], lv.domain[0], phases)):
+            if progress:
+                progress(f"fem_finite_body: contact grid {lv.cells[0]} x {lv.cells[1]}, phase {j + 1}/{phases}")
+            num = replace(numerics, nx=lv.cells[0], ns=lv.cells[1], domain_x=dx_, domain_s=lv.domain[1])
+            fb = finite_body_equilibrium(problem, num, corr, prev)
+            prev = fb.result
+            samples.append(_values(problem, fb.result))
+        mean, spread = lattice_phase.phase_mean(samples)
+        grid_levels.append({"nx": lv.cells[0], "ns": lv.cells[1], "h": lv.h, "domain_x": lv.domain[0],
+                            "domain_s": lv.domain[1], "phases": phases, **mean,
+                            **{f"{k}_phase_spread": v for k, v in spread.items()}})
+    names = [q for q in QUANTITIES if q in corr_levels[0]]
+    c_corr = {q: certify([lv["h"] for lv in corr_levels], [lv[q] for lv in corr_levels], CORRECTION_ORDER,
+                         floor=REMESH_SCATTER) for q in names}
+    c_far = {q: certify([lv["h"] for lv in far_levels], [lv[q] for lv in far_levels], floor=REMESH_SCATTER)
+             for q in names}
+    c_grid = {q: certify_formal([lv["h"] for lv in grid_levels], [lv[q] for lv in grid_levels], KALKER_ORDER)
+              for q in names}
+    certs = {q: _combined({"contact grid": c_grid[q], "correction": c_corr[q], "far field": c_far[q]})
+             for q in names}
+    stats = {"solver": "CECT roller equilibrium (half-space DC-FFT contacts) + FE finite-body correction "
+                       "(P2, PARDISO/LU), fixed point on the tractions",
+             "levels": corr_levels, "grid_levels": grid_levels, "level_quantities": names,
+             "certificates": {q: c.as_dict() for q, c in certs.items()},
+             "correction_certificates": {q: c.as_dict() for q, c in c_corr.items()},
+             "far_field_levels": far_levels,
+             "far_field_certificates": {q: c.as_dict() for q, c in c_far.items()},
+             "grid_certificates": {q: c.as_dict() for q, c in c_grid.items()},
+             "halfspace_start": _values(problem, start), "time_s": time.perf_counter() - t0}
+    return ModelResult("fem_finite_body", quantities={q: c.value for q, c in certs.items()}, stats=stats)
