@@ -36,8 +36,8 @@ def correction_tables(p: dict, nx: int, ns: int, mesh: MeshSettings, out: pathli
     key = _key("roller-span", nx, ns, mesh, {k: v for k, v in p.items() if k.startswith(("geometry.", "materials."))},
                float(p["load.normal"]))
     path = out / f"correction_{nx}x{ns}_{key}.npz"
-    if path.exists():
-        return load_tables(path, grids)
+    if (stored := load_tables(path, grids)) is not None:     # None: missing or damaged
+        return stored
     log(f"FE compliance on the correction grid {nx} x {ns} (roller span)")
     t = fe.compliance(p, grids, mesh, progress=log)
     save_tables(path, t)

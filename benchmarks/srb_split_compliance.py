@@ -66,8 +66,8 @@ def fe_tables(p: dict, cp: dict, lv: dict, mesh: MeshSettings, out: pathlib.Path
     key = _key(lv["nx"], lv["ns"], lv["half_x"], mesh, cp["s_centre"], {k: v for k, v in p.items()
                                                                          if k.startswith(("geometry.", "materials."))})
     path = out / f"tables_{lv['nx']}x{lv['ns']}_{key}.npz"
-    if path.exists():
-        return grids, load_tables(path, grids)
+    if (stored := load_tables(path, grids)) is not None:     # None: missing or damaged
+        return grids, stored
     log(f"FE compliance {lv['nx']} x {lv['ns']} cells, mesh {mesh}")
     from femcheck.fem import srb_rolling as fe
 

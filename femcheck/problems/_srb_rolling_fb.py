@@ -139,7 +139,7 @@ def _combined(parts: dict[str, Certificate]) -> Certificate:
 
 def finite_body(p: dict[str, Any], problem, numerics, constants, start: EquilibriumResult,
                 progress=None) -> ModelResult:
-    """The two-part certified finite-body equilibrium (module docstring) from the half-space equilibrium
+    """The three-part certified finite-body equilibrium (module docstring) from the half-space equilibrium
     ``start`` on the scene's grid ``numerics``."""
     t0 = time.perf_counter()
     n_corr, n_grid, phases = (int(p["numerics.fb_correction_levels"]), int(p["numerics.fb_grid_levels"]),
