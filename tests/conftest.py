@@ -9,6 +9,8 @@ import os
 import tempfile
 from pathlib import Path
 
+import pytest
+
 _RUN_UID = os.environ.get("PYTEST_XDIST_TESTRUNUID")
 if _RUN_UID:
     _cache = Path(tempfile.gettempdir()) / f"femcheck-test-cache-{_RUN_UID}"
@@ -21,6 +23,7 @@ else:
 _GB_PER_WORKER = 6
 
 
+@pytest.hookimpl(optionalhook=True)          # pytest-xdist's hook; absent with -p no:xdist
 def pytest_xdist_auto_num_workers(config):
     """``-n auto``: one worker per core, at most one per 6 GB of memory."""
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
