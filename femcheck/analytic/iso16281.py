@@ -69,6 +69,29 @@ class SlicedBearing:
     dofs: tuple[str, ...]
 
 
+def row_kinematics(rows: list[Row], psi: np.ndarray, xk: np.ndarray, pitch_radius: float, clearance: float,
+                   drop: np.ndarray, axial: bool, tilt: bool) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """(G (rows Z n_s, n_dof), c (rows Z n_s,), dof names) of the module doc: slice (row r, roller j at psi_j,
+    slice k at z_r + x_k) has delta = G . u - c with u = (delta_x, delta_y[, delta_a][, theta_x, theta_y]) (``axial``
+    and ``tilt`` select the optional DOFs) and c = (G_r/2) cos alpha + ``drop``(x_k); order (row, roller, slice)."""
+    dofs = ("delta_x", "delta_y") + (("delta_a",) if axial else ()) + (("theta_x", "theta_y") if tilt else ())
+    rollers, slices = len(psi), len(xk)
+    G, c = [], []
+    cp, sp = np.cos(psi)[:, None], np.sin(psi)[:, None]
+    for r in rows:
+        ca, sa = np.cos(r.contact_angle), r.sign * np.sin(r.contact_angle)
+        z = r.z + xk[None, :]                         # (1, n_s) axial position of each slice
+        cols = [ca * cp + 0 * z, ca * sp + 0 * z]
+        if axial:
+            cols.append(np.full((rollers, slices), sa))
+        if tilt:
+            cols.append(-ca * z * sp + sa * pitch_radius * sp)
+            cols.append(ca * z * cp - sa * pitch_radius * cp)
+        G.append(np.stack(cols, axis=-1).reshape(-1, len(dofs)))
+        c.append((0.5 * clearance * ca + drop[None, :] + np.zeros((rollers, 1))).ravel())
+    return np.vstack(G), np.concatenate(c), dofs
+
+
 def sliced_equilibrium(rows: list[Row], rollers: int, pitch_radius: float, length: float, diameter: float,
                        clearance: float, slices: int, radial_load: float, axial_load: float = 0.0,
                        load_offset: float = 0.0, load_angle: float = 0.0, tilt: float = 0.0,
@@ -85,24 +108,10 @@ def sliced_equilibrium(rows: list[Row], rollers: int, pitch_radius: float, lengt
     drop = 2.0 * crown_drop(xk, length, diameter, tapered) if crown == "iso" else np.zeros(slices)
     angled = any(r.contact_angle != 0 for r in rows)
     multi = len(rows) > 1
-    dofs = ("delta_x", "delta_y") + (("delta_a",) if angled else ()) + (("theta_x", "theta_y") if multi else ())
-    G, c = [], []
-    cp, sp = np.cos(psi)[:, None], np.sin(psi)[:, None]
-    for r in rows:
-        ca, sa = np.cos(r.contact_angle), r.sign * np.sin(r.contact_angle)
-        z = r.z + xk[None, :]                         # (1, n_s) axial position of each slice
-        cols = [ca * cp + 0 * z, ca * sp + 0 * z]
-        if angled:
-            cols.append(np.full((rollers, slices), sa))
-        if multi:
-            cols.append(-ca * z * sp + sa * pitch_radius * sp)
-            cols.append(ca * z * cp - sa * pitch_radius * cp)
-        G.append(np.stack(cols, axis=-1).reshape(-1, len(dofs)))
-        off = 0.5 * clearance * ca + drop[None, :] + np.zeros((rollers, 1))
-        if tilt and not multi:                        # prescribed misalignment theta_y = tilt
-            off = off + ca * np.tan(tilt) * xk[None, :] * cp   # delta_jk = ... - x_k tan(theta) cos(psi_j)
-        c.append(off.ravel())
-    G, c = np.vstack(G), np.concatenate(c)
+    G, c, dofs = row_kinematics(rows, psi, xk, pitch_radius, clearance, drop, axial=angled, tilt=multi)
+    if tilt and not multi:                            # prescribed misalignment theta_y = tilt
+        ca = np.cos(rows[0].contact_angle)            # delta_jk = ... - x_k tan(theta) cos(psi_j)
+        c = c + (ca * np.tan(tilt) * xk[None, :] * np.cos(psi)[:, None]).ravel()
     F = np.zeros(len(dofs))
     F[0] = radial_load
     if angled:

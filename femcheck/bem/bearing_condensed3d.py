@@ -137,8 +137,22 @@ def solve(row: SlicedRow, C: np.ndarray | None, radial_load: float, moments: tup
     if C.shape != (n, n):
         raise ValueError(f"compliance must be ({n}, {n}) for {row.rollers} rollers x {row.slices} slices, "
                          f"got {C.shape}")
-    d = rig.delta.copy()
-    d_ref = max(float(np.abs(rig.delta).max()), 1e-12)
+    d, u, it, res = newton(G, c, law, F, C, rig, tol, max_iter)
+    q = law.load(d)
+    Z = row.rollers
+    return Condensed3DResult(q.reshape(Z, -1), q.reshape(Z, -1).sum(axis=1), d.reshape(Z, -1), u, dofs,
+                             (C @ q).reshape(Z, -1), it, res, time.perf_counter() - t0)
+
+
+def newton(G: np.ndarray, c: np.ndarray, law, F: np.ndarray, C: np.ndarray, rigid, tol: float = 1e-11,
+           max_iter: int = 100) -> tuple[np.ndarray, np.ndarray, int, float]:
+    """(d, u, iterations, scaled residual) of the module doc's Newton for any slice kinematics (G, c), slice
+    ``law``, loads ``F`` and compliance ``C`` (m/N), started from the rigid-ring equilibrium ``rigid``
+    (:func:`femcheck.analytic.bearing_load.solve_rigid` with the same G, c, law, F)."""
+    n, m = G.shape
+    u = rigid.u.copy()
+    d = rigid.delta.copy()
+    d_ref = max(float(np.abs(rigid.delta).max()), 1e-12)
     f_ref = float(np.linalg.norm(F))
 
     def residual(d, u):
@@ -154,7 +168,6 @@ def solve(row: SlicedRow, C: np.ndarray | None, radial_load: float, moments: tup
             raise ConvergenceError("3D condensed bearing (Newton)", it, res, tol, "iterations exhausted")
         it += 1
         k = law.stiffness(d)
-        m = len(dofs)
         J = np.zeros((n + m, n + m))
         J[:n, :n] = C * k[None, :]
         J[np.arange(n), np.arange(n)] += 1.0
@@ -171,10 +184,7 @@ def solve(row: SlicedRow, C: np.ndarray | None, radial_load: float, moments: tup
         if t < 1e-10:
             raise ConvergenceError("3D condensed bearing (Newton)", it, res, tol, "line search failed")
         d, u, r1, r2, res = d_new, u_new, n1, n2, res_new
-    q = law.load(d)
-    Z = row.rollers
-    return Condensed3DResult(q.reshape(Z, -1), q.reshape(Z, -1).sum(axis=1), d.reshape(Z, -1), u, dofs,
-                             (C @ q).reshape(Z, -1), it, res, time.perf_counter() - t0)
+    return d, u, it, res
 
 
 def solve_direct(row: SlicedRow, K, free: np.ndarray, B: np.ndarray, radial_load: float,

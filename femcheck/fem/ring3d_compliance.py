@@ -7,7 +7,11 @@ loaded on its raceway by one patch per roller position j and ISO/TS 16281 slice 
     patch (j, k) = {r = r_race, |theta - psi_j| <= a_c, |z - x_k| <= L/(2 n_s)},   area A = 2 a_c r_race L/n_s,
 
 with a uniform pressure of unit resultant magnitude pushing the raceway away from the roller (outer ring: along
-+e_r(theta)): load vector b_jk = int_patch N^T e_r dS / A. The generalised displacement work-conjugate to that load
++e_r(theta)): load vector b_jk = int_patch N^T e_r dS / A. Several rows (``mesh.row_centres``) number the patches
+(i Z + j) n_s + k; with a contact angle alpha (tapered rows) the load acts along the contact normal
+n_i = cos(alpha) e_r + s_i sin(alpha) e_z of row i (the direction in which the inner ring's displacement raises the
+approach, :func:`femcheck.analytic.iso16281.sliced_equilibrium`; the raceway stays the cylinder r = r_race: the
+cone of a real cup is not meshed, a coarse-compliance approximation). The generalised displacement work-conjugate to that load
 is the patch-averaged radial displacement w_jk = b_jk . U = (1/A) int_patch u . e_r dS, so the condensed
 compliance (m/N) is
 
@@ -28,7 +32,8 @@ width is an input (``patch_half_angle``), and the checks hold C fixed across the
 Supports (``support``):
 - ``"housing"``: the back surface r = r_back clamped (all three components) where the angle from the load line
   theta = 0 is within ``housing_half_angle`` (pi: a rigid housing all round; less: a housing arc, the
-  Jones-Harris flexibly supported ring);
+  Jones-Harris flexibly supported ring) and, with ``support_z``, only over that axial range (a chock held at a
+  screw or load cell);
 - ``"plane_strain"``: u_z = 0 on both end faces and three pins (u_x, u_y at theta = pi/2 and u_x at -pi/2 on the
   back surface, mid-width) that stop the in-plane rigid motion without reacting to a self-equilibrated load:
   the free ring in plane strain, for the curved-beam check of :func:`diametral_changes`.
@@ -58,10 +63,15 @@ class RingFE:
     material: Elastic
     support: str = "housing"
     housing_half_angle: float = np.pi
+    support_z: tuple | None = None      # (z_lo, z_hi): the housing support only over this axial range (m)
+    contact_angle: float = 0.0          # alpha (rad): the patch loads act along the contact normal
+    row_signs: tuple = (1,)             # s_i = +-1 per row: the normal's axial component s_i sin(alpha)
 
     def __post_init__(self):
         if self.support not in SUPPORTS:
             raise ValueError(f"support must be one of {SUPPORTS}, got {self.support!r}")
+        if len(self.row_signs) != self.mesh.rows:
+            raise ValueError(f"row_signs needs one sign per row ({self.mesh.rows}), got {self.row_signs}")
 
 
 @dataclass
@@ -93,15 +103,19 @@ class RingCompliance:
 
 
 def _patch_labels(spec: RingMeshSpec, centres: np.ndarray) -> np.ndarray:
-    """Patch index j n_s + k of raceway facets with centroids ``centres`` (3, n), -1 outside every patch."""
+    """Patch index (i Z + j) n_s + k (row i, roller j, slice k) of raceway facets with centroids ``centres``
+    (3, n), -1 outside every patch."""
     sector = 2.0 * np.pi / spec.rollers
     rel = np.mod(np.arctan2(centres[1], centres[0]) - spec.first_angle + 0.5 * sector, 2.0 * np.pi) - 0.5 * sector
     j = np.floor((rel + 0.5 * sector) / sector).astype(int) % spec.rollers
     off = rel - j * sector
-    k = np.floor((centres[2] + 0.5 * spec.length) / (spec.length / spec.slices)).astype(int)
+    zc = np.asarray(spec.row_centres, dtype=float)
+    i = np.argmin(np.abs(centres[2][None, :] - zc[:, None]), axis=0)
+    zl = centres[2] - zc[i]
+    k = np.floor((zl + 0.5 * spec.length) / (spec.length / spec.slices)).astype(int)
     inside = (np.abs(off) < spec.patch_half_angle) & (k >= 0) & (k < spec.slices) & \
-        (np.abs(centres[2]) < 0.5 * spec.length)
-    return np.where(inside, j * spec.slices + k, -1)
+        (np.abs(zl) < 0.5 * spec.length)
+    return np.where(inside, (i * spec.rollers + j) * spec.slices + k, -1)
 
 
 def stiffness(mesh, material: Elastic, chunk: int = 2000) -> csr_matrix:
@@ -150,17 +164,20 @@ def ring_system(fe: RingFE) -> RingSystem:
     facets = bf[on_race]
     labels = _patch_labels(s, cen[:, on_race])
     facets, labels = facets[labels >= 0], labels[labels >= 0]
-    npatch = s.rollers * s.slices
+    npatch = s.rows * s.rollers * s.slices
     if np.bincount(labels, minlength=npatch).min() != (2 * s.refine) * s.refine:
         raise RuntimeError("ring mesh: a patch is not the expected union of raceway facets")
     fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=4)
     area = 2.0 * s.patch_half_angle * s.r_race * s.length / s.slices
     sign = 1.0 if s.r_back > s.r_race else -1.0      # push the raceway away from the roller
-    # b_jk = int N^T e_r dS / A by the facet basis' own quadrature, every facet added to its patch's column
+    # b_ijk = int N^T n dS / A by the facet basis' own quadrature, every facet added to its patch's column; the
+    # contact normal n = cos(alpha) e_r + s_i sin(alpha) e_z of the facet's row (e_r for a radial bearing)
     x = fb.global_coordinates().value                # (3, n_facets, n_q)
     er = x[:2] / np.hypot(x[0], x[1])
-    local = np.stack([np.sum((phi[0].value[0] * er[0] + phi[0].value[1] * er[1]) * fb.dx, axis=1)
-                      for phi in fb.basis])          # (n_local, n_facets)
+    ca, sa = np.cos(fe.contact_angle), np.sin(fe.contact_angle)
+    sz = (sa * np.asarray(fe.row_signs, dtype=float)[labels // (s.rollers * s.slices)])[:, None]
+    local = np.stack([np.sum((ca * (phi[0].value[0] * er[0] + phi[0].value[1] * er[1]) + sz * phi[0].value[2])
+                             * fb.dx, axis=1) for phi in fb.basis])          # (n_local, n_facets)
     B = np.zeros((basis.N, npatch))
     np.add.at(B, (fb.element_dofs, np.broadcast_to(labels, fb.element_dofs.shape)), sign * local / area)
     # supports
@@ -170,7 +187,10 @@ def ring_system(fe: RingFE) -> RingSystem:
     back = np.abs(rad - s.r_back) < 1e-6 * thick
     if fe.support == "housing":
         ang = np.abs(np.arctan2(loc[1], loc[0]))
-        held = np.flatnonzero(back & (ang <= fe.housing_half_angle + 1e-9))
+        on = back & (ang <= fe.housing_half_angle + 1e-9)
+        if fe.support_z is not None:
+            on &= (loc[2] >= fe.support_z[0] - 1e-9 * s.width) & (loc[2] <= fe.support_z[1] + 1e-9 * s.width)
+        held = np.flatnonzero(on)
     else:
         ends = np.abs(np.abs(loc[2]) - 0.5 * s.width) < 1e-9 * s.width
         held = [np.flatnonzero(ends & (comp == 2))]

@@ -8,11 +8,13 @@ with those of theta_0. Node planes lie on every patch edge:
 
 - circumferentially, a sector of 2 pi/Z per roller centred on the roller angle psi_j, with the patch
   |theta - psi_j| <= a_c meshed by 2 m cells and each of the two remaining parts by ``between`` m cells (uniform);
-- axially, the roller's effective length L centred on z = 0 cut into n_s slices of m cells each, and the two ring
-  ends outside it (B - L)/2 by ``ends`` m cells each;
+- axially, each row's roller effective length L centred on its ``row_centres`` entry (default one row at z = 0) cut
+  into n_s slices of m cells each, the two ring ends outside the rows by ``ends`` m cells each and the gaps between
+  rows by ``gaps`` m cells each; ``z_breaks`` (e.g. the edges of a support) add node planes, a segment they split
+  sharing its cells in proportion to length (at least m each);
 - radially, ``radial`` m cells.
 
-So patch (j, k) = {r = r_race, |theta - psi_j| <= a_c, |z - x_k| <= L/(2 n_s)} is a union of whole boundary facets
+So patch (row i, j, k) = {r = r_race, |theta - psi_j| <= a_c, |z - z_i - x_k| <= L/(2 n_s)} is a union of whole boundary facets
 at every refinement m, the load integrals are exact, and refining by m keeps the patches (a nested family of
 meshes: the condensed compliance converges as the mesh does, with nothing else changing).
 
@@ -45,12 +47,24 @@ class RingMeshSpec:
     between: int = 3         # cells (times m) from a patch edge to the sector edge
     ends: int = 2            # cells (times m) over each ring end outside the roller length
     radial: int = 1          # cells (times m) through the thickness
+    row_centres: tuple = (0.0,)  # z of each row's middle (m)
+    gaps: int = 1            # cells (times m) over each gap between neighbouring rows
+    z_breaks: tuple = ()     # extra axial node planes (m), e.g. a support's edges
 
     def __post_init__(self):
         if not 0 < self.patch_half_angle < np.pi / self.rollers:
             raise ValueError("patch_half_angle must lie in (0, pi/Z)")
         if not 0 < self.length <= self.width * (1 + 1e-12):
             raise ValueError("length must lie in (0, width]")
+        zc = np.asarray(self.row_centres, dtype=float)
+        tol = 1e-12 * self.width
+        if zc.size == 0 or np.any(np.diff(zc) < self.length - tol) or \
+                zc[0] - 0.5 * self.length < -0.5 * self.width - tol or zc[-1] + 0.5 * self.length > 0.5 * self.width + tol:
+            raise ValueError("row_centres must be ascending, rows at least a roller length apart and inside the width")
+
+    @property
+    def rows(self) -> int:
+        return len(self.row_centres)
 
 
 def _theta_nodes(s: RingMeshSpec) -> np.ndarray:
@@ -62,13 +76,29 @@ def _theta_nodes(s: RingMeshSpec) -> np.ndarray:
     return np.append(theta, theta[0] + 2.0 * np.pi)
 
 
+def _segment(a: float, b: float, cells: int, breaks: np.ndarray) -> np.ndarray:
+    """Nodes on [a, b) with ``cells`` uniform cells, or, where ``breaks`` fall inside, each piece its share."""
+    inner = breaks[(breaks > a + 1e-12 * abs(b - a)) & (breaks < b - 1e-12 * abs(b - a))]
+    if inner.size == 0:
+        return np.linspace(a, b, cells + 1)[:-1]
+    edges = np.concatenate([[a], inner, [b]])
+    share = np.maximum(1, np.rint(cells * np.diff(edges) / (b - a)).astype(int))
+    return np.concatenate([np.linspace(e0, e1, n + 1)[:-1] for e0, e1, n in zip(edges[:-1], edges[1:], share)])
+
+
 def _z_nodes(s: RingMeshSpec) -> np.ndarray:
     m, half_l, half_b = s.refine, 0.5 * s.length, 0.5 * s.width
-    mid = np.linspace(-half_l, half_l, s.slices * m + 1)
-    if half_b - half_l <= 1e-12 * half_b:
-        return mid
-    lo = np.linspace(-half_b, -half_l, s.ends * m + 1)[:-1]
-    return np.concatenate([lo, mid, -lo[::-1]])
+    breaks = np.sort(np.asarray(s.z_breaks, dtype=float))
+    nodes, z = [], -half_b
+    for i, zc in enumerate(s.row_centres):
+        lo = zc - half_l
+        if lo - z > 1e-12 * half_b:            # ring end (first row) or gap to the previous row
+            nodes.append(_segment(z, lo, (s.ends if i == 0 else s.gaps) * m, breaks))
+        nodes.append(np.linspace(lo, zc + half_l, s.slices * m + 1)[:-1])
+        z = zc + half_l
+    if half_b - z > 1e-12 * half_b:
+        nodes.append(_segment(z, half_b, s.ends * m, breaks))
+    return np.append(np.concatenate(nodes), half_b if half_b - z > 1e-12 * half_b else z)
 
 
 def ring_mesh(s: RingMeshSpec) -> MeshHex:

@@ -7,6 +7,9 @@ Models:
   ``integral``    its Z -> infinity limit with Sjövall's J_r (any law; J_r, J_a reported for the power laws).
   ``condensed``   seed 003's idea in 2D: FE ring compliances at the contact centres, one roller's compliance,
                   Hertz-revised widths (:mod:`femcheck.bem.bearing_condensed`).
+  ``flexible_chock`` several tapered rows in an elastic chock (coarse 3D FE, clamped at its support) on a roll
+                  neck (Timoshenko beam clamped at the mill's symmetry plane), ISO/TS 16281 slices
+                  (:mod:`femcheck.bem.mill_chock`; spec P3, seed 003 Table 3).
   ``fem``         2D plane-strain FE of the section, frictionless contact, load control, geometric similarity,
                   mesh levels with certificates (:mod:`femcheck.fem.bearing2d`). A stored reference.
 Quantities (SI): ``q_max`` (N), ``radial_deflection`` (m, shaft relative to housing), ``loaded_rollers``,
@@ -31,8 +34,9 @@ from ..errors import InputError
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
+from ._bearing_chock import CHOCK_SCHEMA, flexible_chock, validate_chock
 
-MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "measured")
+MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "flexible_chock", "measured")
 # what a bearing is sized with: the largest roller load (life, static capacity), then the deflection
 DESIGN_QUANTITIES = ("q_max", "row_share", "radial_deflection")
 # Forces are per roller (N; the 2D section's laws give a roller's load for its effective length).
@@ -102,6 +106,7 @@ SCHEMA: dict[str, Key] = {
                                         lo_closed=True, hi_closed=True),
     "numerics.condensed_roller": Key("str", "-", "condensed model: roller compliance",
                                      choices=("closed_form", "fem")),
+    **CHOCK_SCHEMA,
     "paper.row_shares_measured": Key("floats", "%", "seed 003 Table 3: measured row shares", lo=0.0, hi=100.0,
                                      lo_closed=True, hi_closed=True),
     "paper.row_shares_gsc": Key("floats", "%", "seed 003 Table 3: GSC-BBEM row shares", lo=0.0, hi=100.0,
@@ -143,6 +148,10 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_similarity": "rotate",
     "numerics.condensed_h_contact": 0.25,
     "numerics.condensed_roller": "closed_form",
+    "chock.seat": "spherical",
+    "numerics.chock_between": 1,
+    "numerics.chock_radial": 2,
+    "numerics.chock_slices": 8,
 }
 REQUIRED = ("geometry.inner_raceway_diameter", "geometry.outer_raceway_diameter", "geometry.roller_diameter",
             "geometry.roller_length", "bearing.rollers", "load.radial", "materials.rollers.E", "materials.rollers.nu")
@@ -152,7 +161,10 @@ DEPENDS = {
                        "numerics.fem_"), "reference": True, "coarse": {"numerics.fem_levels": 1}},
     "condensed": {"params": ("geometry.", "bearing.rollers", "load.radial", "load.angle", "materials.", "support.",
                              "numerics.condensed_")},
+    "flexible_chock": {"params": ("geometry.", "bearing.", "load.", "materials.structure.", "chock.", "roll.",
+                                  "numerics.chock_")},
 }
+
 
 
 def clearance(params: dict[str, Any]) -> float:
@@ -211,6 +223,8 @@ def validate(params: dict[str, Any]) -> None:
         if key in params and not lo < params[key] < hi:
             raise InputError(key, f"{params[key]:g} m is not allowed; allowed: ({lo:g}, {hi:g}) m")
     run = set(params["models.run"]) | set(params["models.references"])
+    if "flexible_chock" in run:
+        validate_chock(params)
     two_d = run & {"condensed", "fem"}
     if two_d:
         if params["bearing.rows"] > 1 or params["bearing.contact_angle"] > 0 or params["load.axial"] > 0:
@@ -401,7 +415,8 @@ def measured(scene: Scene, progress=None) -> ModelResult:
 
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"rigid_ring": rigid_ring, "integral": integral,
-                                                 "condensed": condensed, "fem": fem, "measured": measured}
+                                                 "condensed": condensed, "fem": fem,
+                                                 "flexible_chock": flexible_chock, "measured": measured}
 STRESS_QUANTITIES = ("q_max", "roller_loads_max")
 
 

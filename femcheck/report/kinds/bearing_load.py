@@ -1,6 +1,6 @@
 """Report section of the bearing_load kind: roller-load polar plot of every model over the FE, roller-load table
 with each model's departure from the reference, load-zone angles, the FE's deformed rings, and for the seed-003
-four-row bearing its Table 3 with the recomputed errors."""
+four-row bearing its Table 3 with the recomputed errors and a per-row plot."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -11,8 +11,14 @@ from ...result import RunResult
 from ..plots import plt, save_figure
 from . import Figure, KindSection, Table
 
-COLOURS = {"fem": "tab:red", "condensed": "tab:blue", "rigid_ring": "k", "integral": "tab:green"}
-MARKERS = {"fem": "o", "condensed": "x", "rigid_ring": "+", "integral": "."}
+COLOURS = {"fem": "tab:red", "condensed": "tab:blue", "rigid_ring": "k", "integral": "tab:green",
+           "flexible_chock": "tab:purple"}
+MARKERS = {"fem": "o", "condensed": "x", "rigid_ring": "+", "integral": ".", "flexible_chock": "s"}
+# several rows: the models that give row shares, as Table 3 names them
+MULTI_ROW_MODELS = {"rigid_ring": "rigid rings, ISO slices (femcheck)",
+                    "flexible_chock": "elastic chock + roll, ISO slices (femcheck)"}
+ROW_COLOURS = {"rigid_ring": "k", "flexible_chock": "tab:purple"}
+ROW_STYLES = {"rigid_ring": "--", "flexible_chock": "-"}
 
 
 def _ok(run: RunResult) -> dict:
@@ -120,9 +126,10 @@ def _table3(run: RunResult) -> Table | None:
     meas = np.asarray(p["paper.row_shares_measured"], float)
     rows_out = []
     sources = [("GSC-BBEM (seed 003)", p.get("paper.row_shares_gsc")), ("T-BBEM (seed 003)", p.get("paper.row_shares_tbbem"))]
-    m = run.models.get("rigid_ring")
-    if m is not None and m.status == "ok" and "row_shares" in m.fields:
-        sources.append(("rigid rings, ISO slices (femcheck)", list(m.fields["row_shares"])))
+    for name, label in MULTI_ROW_MODELS.items():
+        m = run.models.get(name)
+        if m is not None and m.status == "ok" and "row_shares" in m.fields:
+            sources.append((label, list(m.fields["row_shares"])))
     rows_out.append(["experiment"] + [float(v) for v in meas] + [""])
     for label, shares in sources:
         if shares is None:
@@ -134,9 +141,42 @@ def _table3(run: RunResult) -> Table | None:
     header = ["row share (%)"] + [f"row {r + 1}" for r in range(meas.size)] + ["max error (%)"]
     return Table("Seed 003 Table 3: row shares of the work-side radial load", header, rows_out,
                  "Errors recomputed from the printed shares (the paper prints 9.73 % for GSC row 4; "
-                 "|29.85 - 32.67|/32.67 = 8.63 %). The femcheck row is a rigid-ring model with reconstructed "
-                 "geometry and fitted load offset and axial load (informational: no rigid model reproduces row 3 > "
-                 "row 4, which needs the chock and neck elasticity).")
+                 "|29.85 - 32.67|/32.67 = 8.63 %). The femcheck rows share the reconstructed geometry and the load "
+                 "offset and axial load fitted for rigid rings; no rigid model reproduces row 3 > row 4. The "
+                 "flexible chock's geometry, pad and seat are assumptions (scene file); both are contrasts.")
+
+
+def _rows(run: RunResult, path: Path) -> str | None:
+    """Row shares of the paper's models, the experiment and femcheck's, and each row's roller loads."""
+    p = run.params
+    models = {n: run.models[n] for n in MULTI_ROW_MODELS if n in run.models and run.models[n].status == "ok"
+              and "row_shares" in run.models[n].fields}
+    if not models:
+        return None
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10.5, 4.0))
+    bars = [("experiment", p.get("paper.row_shares_measured"), "0.3"),
+            ("GSC-BBEM", p.get("paper.row_shares_gsc"), "0.6"), ("T-BBEM", p.get("paper.row_shares_tbbem"), "0.8")]
+    bars += [(n, list(m.fields["row_shares"]), ROW_COLOURS[n]) for n, m in models.items()]
+    bars = [b for b in bars if b[1] is not None]
+    n_rows = len(bars[0][1])
+    w = 0.8 / len(bars)
+    for i, (label, sh, colour) in enumerate(bars):
+        a1.bar(np.arange(n_rows) + (i - 0.5 * (len(bars) - 1)) * w, sh, w, label=label, color=colour)
+    a1.set_xticks(np.arange(n_rows), [f"row {r + 1}" for r in range(n_rows)])
+    a1.set_ylabel("share of the radial load (%)")
+    a1.set_title("row shares (row 1: operating side)")
+    a1.legend(fontsize=7)
+    for n, m in models.items():
+        psi = np.degrees(np.asarray(m.fields["roller_angle"]))
+        order = np.argsort(psi)
+        for r, q in enumerate(np.asarray(m.fields["row_roller_loads"])):
+            a2.plot(psi[order], q[order], color=f"C{r}", ls=ROW_STYLES[n], marker=".", lw=0.9,
+                    label=f"row {r + 1}, {n}")
+    a2.set_xlabel("roller angle psi from the load line (deg)")
+    a2.set_ylabel("roller load Q (N)")
+    a2.set_title("roller loads per row")
+    a2.legend(fontsize=6, ncol=2)
+    return save_figure(fig, path)
 
 
 def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
@@ -148,7 +188,9 @@ def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
              "half-angle."),
             ("rings", _rings, "FE finest level: elastic deformation of the inner (blue, relative to the shaft it "
                               "is tied to) and outer ring (red, in the housing) over the undeformed rings (grey), "
-                              "magnified; rollers shaded by their load.")):
+                              "magnified; rollers shaded by their load."),
+            ("rows", _rows, "Several rows: each row's share of the radial load (seed 003 Table 3's experiment "
+                            "and models beside femcheck's) and the roller loads of every row.")):
         f = fn(run, outdir / f"{prefix}-{name}.png")
         if f:
             out.figures.append(Figure(f, caption))
