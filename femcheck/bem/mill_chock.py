@@ -18,11 +18,17 @@ u = (delta_x, delta_y, delta_a) without rotating (symmetry), the slice deflectio
 
     d = G u - c - (C_chock + C_cones + C_neck) q(d),   G^T q = (F_r, 0, F_a),
 
-solved by :func:`femcheck.bem.bearing_condensed3d.newton` from the rigid-ring start (C = 0). The moment of the
-load about the bearing is taken by the chock's support and the roll's symmetry section, so the load line's
-offset of the rigid 5-DOF model is not an input here: where the rows' loads act follows from the two elastic
-bodies and the support's position. Row shares: each row's force along the load line over their sum (%), as in
-seed 003 Table 3.
+solved by :func:`femcheck.bem.bearing_condensed3d.newton` from the rigid-ring start (C = 0). Two supports:
+
+- clamped chock: the moment of the load about the bearing is taken by the chock's support and the roll's symmetry
+  section, and where the rows' loads act follows from the two elastic bodies and the support's position;
+- spherical seat at z_seat (``seat`` in :func:`solve`): the chock turns freely about it, so the relative tilt
+  (theta_x, theta_y) joins u and the chock's moment balance puts the rows' resultant through the seat,
+  G^T q = (F_r, 0, F_a, 0, z_seat F_r), with the axial reaction (the chock's end cover bearing on the cups' whole
+  face) along the axis, so F_a adds no moment: the rigid 5-DOF model with its load line at z_seat, plus the
+  bodies' elasticity.
+
+Row shares: each row's force along the load line over their sum (%), as in seed 003 Table 3.
 
 Model definition, stated: the chock is a cylinder (a real chock is a block; only the material behind the load
 zone carries the load to the support); the cups are merged with it and the cones are one ring (press fits, no
