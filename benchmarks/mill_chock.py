@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from femcheck.bem import mill_chock as mc
-from femcheck.problems._bearing_chock import parts
+from femcheck.problems._bearing_chock import parts, seat_of
 from femcheck.scene import load_scene
 
 OUT = Path(__file__).parent / "results"
@@ -36,7 +36,7 @@ def run(overrides: dict, cones_cache: dict, mesh_kw: dict | None = None) -> dict
         cones_cache[key] = mc.cone_compliance(bearing, chock.material, mesh)
     ci = cones_cache[key]
     cn = mc.roll_compliance(bearing, neck)
-    seat = p["load.offset"] if p["chock.seat"] == "spherical" else None
+    seat = seat_of(p)
     sol = mc.solve(bearing, cc.C + ci.C + cn, p["load.radial"], p["load.axial"], seat=seat)
     rigid = mc.solve(bearing, None, p["load.radial"], p["load.axial"], seat=seat)
     meas = np.asarray(p["paper.row_shares_measured"], float)

@@ -69,6 +69,24 @@ class SlicedBearing:
     dofs: tuple[str, ...]
 
 
+def row_layout(rows: int, spacing: float, arrangement: str, contact_angle: float) -> list[Row]:
+    """Rows at z = (r - (rows - 1)/2) ``spacing`` (row 1 first, on the operating side of a mill bearing), contact-angle
+    directions s = +, -, +, ... (``arrangement`` "alternate") or all + ("same")."""
+    return [Row(float((r - 0.5 * (rows - 1)) * spacing), contact_angle,
+                (-1) ** r if arrangement == "alternate" else 1) for r in range(rows)]
+
+
+def rigid_start(law: PowerLaw, n_dofs: int, radial_load: float, rollers: int, rows: int, slices: int,
+                clearance: float, contact_angle: float, drop: np.ndarray) -> np.ndarray:
+    """Starting displacement of the rigid-ring Newton: delta_x of a row whose most loaded roller carries about
+    5 F_r/(rows Z) (Stribeck's 4.08 rounded up), the other DOFs 0."""
+    u0 = np.zeros(n_dofs)
+    ca = np.cos(contact_angle)
+    qmax_est = 5.0 * radial_load / (rollers * rows)
+    u0[0] = (0.5 * clearance * ca + float(law.deflection(qmax_est / slices)) + drop.max()) / ca
+    return u0
+
+
 def row_kinematics(rows: list[Row], psi: np.ndarray, xk: np.ndarray, pitch_radius: float, clearance: float,
                    drop: np.ndarray, axial: bool, tilt: bool) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
     """(G (rows Z n_s, n_dof), c (rows Z n_s,), dof names) of the module doc: slice (row r, roller j at psi_j,
@@ -119,10 +137,7 @@ def sliced_equilibrium(rows: list[Row], rollers: int, pitch_radius: float, lengt
     if multi:
         F[4] = load_offset * radial_load
     law = slice_law(length, slices)
-    u0 = np.zeros(len(dofs))
-    qmax_est = 5.0 * radial_load / (rollers * len(rows))
-    u0[0] = (0.5 * clearance * np.cos(rows[0].contact_angle) + float(law.deflection(qmax_est / slices))
-             + drop.max()) / np.cos(rows[0].contact_angle)
+    u0 = rigid_start(law, len(dofs), radial_load, rollers, len(rows), slices, clearance, rows[0].contact_angle, drop)
     sol = solve_rigid(G, c, law, F, u0)
     q = sol.q.reshape(len(rows), rollers, slices)
     ca_rows = np.array([np.cos(r.contact_angle) for r in rows])

@@ -22,7 +22,7 @@ Condensed onto slices: slice m (row i, roller at psi, axial position z_m on a no
     d_m = (G_loc v(z_m))_m,   G_loc,m = [cos(alpha) cos(psi), cos(alpha) sin(psi), s_i sin(alpha),
                                          s_i sin(alpha) R sin(psi), -s_i sin(alpha) R cos(psi)]
 
-(the rows of :func:`femcheck.analytic.iso16281.sliced_equilibrium` taken at the section itself), and its load q_m
+(the rows of :func:`femcheck.analytic.iso16281.row_kinematics` taken at the section itself), and its load q_m
 acts on the section as -G_loc,m^T q_m, so the neck's compliance in the slice model d = G u - c - C q is
 
     C_neck = G_loc F G_loc^T   (symmetric, positive semi-definite; m/N).
@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .iso16281 import Row, row_kinematics
 
 @dataclass(frozen=True)
 class ShaftSegment:
@@ -112,18 +113,19 @@ def slice_map(psi: np.ndarray, z_local: np.ndarray, row_z: np.ndarray, signs: np
     """(G_loc (n_slices, 5 n_nodes), node z (n_nodes,)) of the module doc for rows at ``row_z`` with contact-angle
     signs ``signs``, rollers at ``psi`` (rad) and slices at ``z_local`` (m, about each row's middle); slice order
     (row, roller, slice), as in :func:`femcheck.analytic.iso16281.sliced_equilibrium`."""
-    ca, sa = np.cos(alpha), np.sin(alpha)
     z_all = (np.asarray(row_z, dtype=float)[:, None] + np.asarray(z_local, dtype=float)[None, :])
     nodes, inv = np.unique(np.round(z_all.ravel(), 12), return_inverse=True)
     inv = inv.reshape(z_all.shape)
     rows, Z, ns = len(row_z), len(psi), len(z_local)
+    # each roller's row of G taken at its own section (z = 0 about it): the rigid kinematics of the section
+    at_section = [Row(0.0, alpha, int(sg)) for sg in signs]
+    G0, _, _ = row_kinematics(at_section, np.asarray(psi, float), np.zeros(1), pitch_radius, 0.0, np.zeros(1),
+                              axial=True, tilt=True)
+    G0 = G0.reshape(rows, Z, 5)
     Gl = np.zeros((rows, Z, ns, 5 * nodes.size))
-    cp, sp = np.cos(psi), np.sin(psi)
     for i in range(rows):
-        si = sa * signs[i]
-        block = np.stack([ca * cp, ca * sp, np.full(Z, si), si * pitch_radius * sp, -si * pitch_radius * cp], axis=1)
         for k in range(ns):
-            Gl[i, :, k, 5 * inv[i, k]:5 * inv[i, k] + 5] = block
+            Gl[i, :, k, 5 * inv[i, k]:5 * inv[i, k] + 5] = G0[i]
     return Gl.reshape(rows * Z * ns, -1), nodes
 
 

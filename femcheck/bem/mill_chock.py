@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic.bearing_load import solve_rigid
-from ..analytic.iso16281 import Row, crown_drop, row_kinematics, slice_law, slice_positions
+from ..analytic.iso16281 import Row, crown_drop, rigid_start, row_kinematics, slice_law, slice_positions
 from ..analytic.roll_neck import neck_compliance
 from ..fem.ring3d_compliance import RingCompliance, RingFE, ring_compliance
 from ..materials import Elastic
@@ -185,10 +185,8 @@ def solve(b: MillBearing, C: np.ndarray | None, radial_load: float, axial_load: 
         F[2] = axial_load
     if seat is not None:
         F[dofs.index("theta_y")] = seat * radial_load
-    u0 = np.zeros(G.shape[1])
-    qmax_est = 5.0 * radial_load / (b.rollers * len(b.row_z))
-    ca = np.cos(b.contact_angle)
-    u0[0] = (0.5 * b.clearance * ca + float(law.deflection(qmax_est / b.slices)) + drop.max()) / ca
+    u0 = rigid_start(law, len(dofs), radial_load, b.rollers, len(b.row_z), b.slices, b.clearance, b.contact_angle,
+                     drop)
     rig = solve_rigid(G, c, law, F, u0)
     if C is None:
         d, u, it, res = rig.delta, rig.u, rig.iterations, rig.residual
@@ -196,6 +194,6 @@ def solve(b: MillBearing, C: np.ndarray | None, radial_load: float, axial_load: 
         d, u, it, res = newton(G, c, law, F, np.asarray(C, float), rig, tol)
     q = law.load(d).reshape(len(b.row_z), b.rollers, b.slices)
     Q = q.sum(axis=2)
-    row_radial = (Q * np.cos(b.psi)[None, :]).sum(axis=1) * ca
+    row_radial = (Q * np.cos(b.psi)[None, :]).sum(axis=1) * np.cos(b.contact_angle)
     shares = 100.0 * row_radial / row_radial.sum()
     return MillResult(q, Q, row_radial, shares, u, dofs, it, res, time.perf_counter() - t0)

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..analytic.iso16281 import row_layout
 from ..errors import InputError
 from ..materials import Elastic
 from ..result import ModelResult
@@ -85,10 +86,9 @@ def parts(p: dict[str, Any]):
     from ..analytic.roll_neck import ShaftSegment
     from ..bem.mill_chock import Chock, MillBearing, Mesh3D, RollNeck
 
-    rows = p["bearing.rows"]
-    s = p["bearing.row_spacing"]
-    zs = tuple(float(z) for z in (np.arange(rows) - 0.5 * (rows - 1)) * s)
-    signs = tuple((-1) ** r if p["bearing.row_arrangement"] == "alternate" else 1 for r in range(rows))
+    rows = row_layout(p["bearing.rows"], p["bearing.row_spacing"], p["bearing.row_arrangement"],
+                      p["bearing.contact_angle"])
+    zs, signs = tuple(r.z for r in rows), tuple(r.sign for r in rows)
     d_i, d_o, D = p["geometry.inner_raceway_diameter"], p["geometry.outer_raceway_diameter"], p["geometry.roller_diameter"]
     width = p["geometry.width"]
     bearing = MillBearing(p["bearing.rollers"], zs, signs, p["bearing.contact_angle"], 0.25 * (d_i + d_o),
@@ -103,6 +103,12 @@ def parts(p: dict[str, Any]):
                      ShaftSegment(face, clamp, p["roll.body_diameter"])), clamp, steel)
     mesh = Mesh3D(between=p["numerics.chock_between"], radial=p["numerics.chock_radial"])
     return bearing, chock, neck, mesh
+
+
+def seat_of(p: dict[str, Any]) -> float | None:
+    """The chock's seat for :func:`femcheck.bem.mill_chock.solve`: the load line (m) on a spherical seat, None when
+    clamped."""
+    return p["load.offset"] if p["chock.seat"] == "spherical" else None
 
 
 def flexible_chock(scene, progress=None) -> ModelResult:
@@ -120,8 +126,7 @@ def flexible_chock(scene, progress=None) -> ModelResult:
     ci = mc.cone_compliance(bearing, chock.material, mesh)
     cn = mc.roll_compliance(bearing, neck)
     t_build = time.perf_counter() - t0
-    seat = p["load.offset"] if p["chock.seat"] == "spherical" else None
-    sol = mc.solve(bearing, cc.C + ci.C + cn, p["load.radial"], p["load.axial"], seat=seat)
+    sol = mc.solve(bearing, cc.C + ci.C + cn, p["load.radial"], p["load.axial"], seat=seat_of(p))
     q = {f"row_share_{r + 1}": float(sh) for r, sh in enumerate(sol.row_shares)}
     q["q_max"] = float(sol.roller_loads.max())
     q["total_force"] = float(sol.row_radial.sum())

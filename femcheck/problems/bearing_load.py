@@ -286,9 +286,7 @@ def rigid_ring(scene: Scene, progress=None) -> ModelResult:
     if p["bearing.law"] == "iso16281":
         rows_n = p["bearing.rows"]
         alpha = p["bearing.contact_angle"]
-        zs = (np.arange(rows_n) - 0.5 * (rows_n - 1)) * p["bearing.row_spacing"]
-        signs = [(-1) ** r if p["bearing.row_arrangement"] == "alternate" else 1 for r in range(rows_n)]
-        rows = [iso16281.Row(float(zz), alpha, s) for zz, s in zip(zs, signs)]
+        rows = iso16281.row_layout(rows_n, p["bearing.row_spacing"], p["bearing.row_arrangement"], alpha)
         D = p["geometry.roller_diameter"]
         sol = iso16281.sliced_equilibrium(rows, z, 0.25 * (p["geometry.inner_raceway_diameter"]
                                                            + p["geometry.outer_raceway_diameter"]),
