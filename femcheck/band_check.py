@@ -56,7 +56,7 @@ from .runner import run_model
 from .scene import Scene, load_scene
 
 FRACTION = 0.5
-NORM_QUANTITIES = ("pressure_profile_l2", "pressure_profile_max", "roller_loads_max")
+NORM_QUANTITIES = ("pressure_profile_l2", "pressure_profile_max", "roller_loads_max", "slice_loads_max")
 # finding status, from the worst
 STATUSES = ("vacuous", "unmeasured", "excepted", "unused", "norm", "ok")
 

@@ -57,6 +57,11 @@ def roller_load_errors(loads: np.ndarray, ref_loads: np.ndarray) -> dict[str, fl
     return {"roller_loads_max": float(np.abs(loads - ref_loads).max() / np.abs(ref_loads).max())}
 
 
+def slice_load_errors(loads: np.ndarray, ref_loads: np.ndarray) -> dict[str, float]:
+    """Slice-by-slice difference (ISO/TS 16281 slices of every roller): max |q_jk - q_jk,ref| / max q_ref."""
+    return {"slice_loads_max": float(np.abs(loads - ref_loads).max() / np.abs(ref_loads).max())}
+
+
 def certificates(res: ModelResult | None) -> dict[str, dict]:
     """A result's convergence certificates (``stats["certificates"]``, format in the README). A multi-level result
     from before certificates existed has only ``stats["richardson"]``: a quantity there without an observed order
@@ -208,6 +213,8 @@ def compare(scene: Scene, results: dict[str, ModelResult], scale: float,
             if "roller_loads" in res.fields and "roller_loads" in rres.fields and \
                     np.shape(res.fields["roller_loads"]) == np.shape(rres.fields["roller_loads"]):
                 errs = roller_load_errors(res.fields["roller_loads"], rres.fields["roller_loads"])
+                if np.shape(res.fields.get("slice_loads", ())) == np.shape(rres.fields.get("slice_loads", ())) != (0,):
+                    errs.update(slice_load_errors(res.fields["slice_loads"], rres.fields["slice_loads"]))
                 for k, v in errs.items():
                     if not judge.duplicate(k, ref, v, 0.0):
                         out.append(judge(k, name, ref, v, 0.0, v))

@@ -34,6 +34,7 @@ STORED = [     # (scene, model, scene overrides the reference was solved with)
     pytest.param("crb-rigid-rings", "fem", None, id="crb-rigid-rings"),
     pytest.param("crb-elastic-rings", "fem", None, id="crb-elastic-rings", marks=pytest.mark.slow),
     pytest.param("crb-housing-arc", "fem", None, id="crb-housing-arc", marks=pytest.mark.slow),
+    pytest.param("crb-3d-misaligned", "resolved", None, id="crb-3d-misaligned", marks=pytest.mark.slow),  # 35 s
 ]
 # A model stored at a second parameter point (Table 2's mu = 0.3 case, spec srb-rolling item 15) is re-solved at its
 # first point only, the second is looked up under the current key (the key hashes the code the model runs and every

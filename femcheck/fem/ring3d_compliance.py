@@ -165,7 +165,7 @@ def ring_system(fe: RingFE) -> RingSystem:
     labels = _patch_labels(s, cen[:, on_race])
     facets, labels = facets[labels >= 0], labels[labels >= 0]
     npatch = s.rows * s.rollers * s.slices
-    if np.bincount(labels, minlength=npatch).min() != (2 * s.refine) * s.refine:
+    if np.bincount(labels, minlength=npatch).min() != (2 * s.refine) * s.refine * s.per_slice:
         raise RuntimeError("ring mesh: a patch is not the expected union of raceway facets")
     fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=4)
     area = 2.0 * s.patch_half_angle * s.r_race * s.length / s.slices

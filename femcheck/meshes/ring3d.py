@@ -9,10 +9,11 @@ with those of theta_0. Node planes lie on every patch edge:
 - circumferentially, a sector of 2 pi/Z per roller centred on the roller angle psi_j, with the patch
   |theta - psi_j| <= a_c meshed by 2 m cells and each of the two remaining parts by ``between`` m cells (uniform);
 - axially, each row's roller effective length L centred on its ``row_centres`` entry (default one row at z = 0) cut
-  into n_s slices of m cells each, the two ring ends outside the rows by ``ends`` m cells each and the gaps between
+  into n_s slices of ``per_slice`` m cells each, the two ring ends outside the rows by ``ends`` m cells each and the gaps between
   rows by ``gaps`` m cells each; ``z_breaks`` (e.g. the edges of a support) add node planes, a segment they split
   sharing its cells in proportion to length (at least m each);
-- radially, ``radial`` m cells.
+- radially, ``radial`` m cells, uniform or growing geometrically from the raceway by ``radial_growth`` per
+  cell at m = 1 (its m-th root at level m, so the levels stay nested).
 
 So patch (row i, j, k) = {r = r_race, |theta - psi_j| <= a_c, |z - z_i - x_k| <= L/(2 n_s)} is a union of whole boundary facets
 at every refinement m, the load integrals are exact, and refining by m keeps the patches (a nested family of
@@ -50,8 +51,14 @@ class RingMeshSpec:
     row_centres: tuple = (0.0,)  # z of each row's middle (m)
     gaps: int = 1            # cells (times m) over each gap between neighbouring rows
     z_breaks: tuple = ()     # extra axial node planes (m), e.g. a support's edges
+    radial_growth: float = 1.0  # ratio of neighbouring radial cells from the raceway outwards (1: uniform)
+    per_slice: int = 1       # axial cells (times m) per slice
 
     def __post_init__(self):
+        if self.per_slice < 1:
+            raise ValueError("per_slice must be >= 1")
+        if not self.radial_growth > 0:
+            raise ValueError("radial_growth must be > 0")
         if not 0 < self.patch_half_angle < np.pi / self.rollers:
             raise ValueError("patch_half_angle must lie in (0, pi/Z)")
         if not 0 < self.length <= self.width * (1 + 1e-12):
@@ -94,7 +101,7 @@ def _z_nodes(s: RingMeshSpec) -> np.ndarray:
         lo = zc - half_l
         if lo - z > 1e-12 * half_b:            # ring end (first row) or gap to the previous row
             nodes.append(_segment(z, lo, (s.ends if i == 0 else s.gaps) * m, breaks))
-        nodes.append(np.linspace(lo, zc + half_l, s.slices * m + 1)[:-1])
+        nodes.append(np.linspace(lo, zc + half_l, s.slices * s.per_slice * m + 1)[:-1])
         z = zc + half_l
     if half_b - z > 1e-12 * half_b:
         nodes.append(_segment(z, half_b, s.ends * m, breaks))
@@ -103,7 +110,11 @@ def _z_nodes(s: RingMeshSpec) -> np.ndarray:
 
 def ring_mesh(s: RingMeshSpec) -> MeshHex:
     """The ring as a skfem ``MeshHex`` (module doc)."""
-    r = np.linspace(s.r_race, s.r_back, s.radial * s.refine + 1)
+    n = s.radial * s.refine
+    # geometric radial cells from the raceway (growth 1: uniform): a patch's local field decays within ~its width
+    g = s.radial_growth ** (1.0 / s.refine)
+    w = g ** np.arange(n)
+    r = s.r_race + (s.r_back - s.r_race) * np.concatenate([[0.0], np.cumsum(w)]) / w.sum()
     if s.r_back < s.r_race:
         r = r[::-1]                    # keep r ascending in the box (orientation)
     theta = _theta_nodes(s)

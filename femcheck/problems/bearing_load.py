@@ -34,15 +34,17 @@ from ..errors import InputError
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
+from ._bearing_3d import DEFAULTS_3D, SCHEMA_3D, condensed3d, resolved, validate_3d
 from ._bearing_chock import CHOCK_SCHEMA, flexible_chock, validate_chock
 
-MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "flexible_chock", "measured")
+MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "flexible_chock", "condensed3d", "resolved", "measured")
 # what a bearing is sized with: the largest roller load (life, static capacity), then the deflection
 DESIGN_QUANTITIES = ("q_max", "row_share", "radial_deflection")
 # Forces are per roller (N; the 2D section's laws give a roller's load for its effective length).
 UNITS = {"q_max": "N", "radial_deflection": "m", "loaded_rollers": "- (count)", "load_zone_angle": "rad",
          "load_zone_parameter": "- (eps)", "stribeck_factor": "- (Z Q_max / F_r)", "row_share": "%",
-         "rating_life": "1e6 rev", "roller_loads": "- (max |Q - Q_ref| / max Q_ref)", "total_force": "N"}
+         "rating_life": "1e6 rev", "roller_loads": "- (max |Q - Q_ref| / max Q_ref)", "total_force": "N",
+         "slice_loads": "- (max |q - q_ref| / max q_ref)"}
 LAWS = ("power", "palmgren", "iso16281", "plane_strain")
 MAX_PRELOAD = 0.01          # |P_d| / D: beyond, the rollers would overlap the raceways by more than small strain
 ALTERNATIVES: tuple = ()
@@ -107,6 +109,7 @@ SCHEMA: dict[str, Key] = {
     "numerics.condensed_roller": Key("str", "-", "condensed model: roller compliance",
                                      choices=("closed_form", "fem")),
     **CHOCK_SCHEMA,
+    **SCHEMA_3D,
     "paper.row_shares_measured": Key("floats", "%", "seed 003 Table 3: measured row shares", lo=0.0, hi=100.0,
                                      lo_closed=True, hi_closed=True),
     "paper.row_shares_gsc": Key("floats", "%", "seed 003 Table 3: GSC-BBEM row shares", lo=0.0, hi=100.0,
@@ -152,6 +155,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.chock_between": 1,
     "numerics.chock_radial": 2,
     "numerics.chock_slices": 8,
+    **DEFAULTS_3D,
 }
 REQUIRED = ("geometry.inner_raceway_diameter", "geometry.outer_raceway_diameter", "geometry.roller_diameter",
             "geometry.roller_length", "bearing.rollers", "load.radial", "materials.rollers.E", "materials.rollers.nu")
@@ -163,6 +167,9 @@ DEPENDS = {
                              "numerics.condensed_")},
     "flexible_chock": {"params": ("geometry.", "bearing.", "load.", "materials.structure.", "chock.", "roll.",
                                   "numerics.chock_")},
+    "condensed3d": {"params": ("geometry.", "bearing.", "load.", "materials.", "support.", "numerics.condensed3d_")},
+    "resolved": {"params": ("geometry.", "bearing.", "load.", "materials.", "support.", "numerics.resolved_"),
+                 "reference": True, "coarse": {"numerics.resolved_levels": 1}},
 }
 
 
@@ -225,6 +232,8 @@ def validate(params: dict[str, Any]) -> None:
     run = set(params["models.run"]) | set(params["models.references"])
     if "flexible_chock" in run:
         validate_chock(params)
+    if run & {"condensed3d", "resolved"}:
+        validate_3d(params, run)
     two_d = run & {"condensed", "fem"}
     if two_d:
         if params["bearing.rows"] > 1 or params["bearing.contact_angle"] > 0 or params["load.axial"] > 0:
@@ -303,6 +312,7 @@ def rigid_ring(scene: Scene, progress=None) -> ModelResult:
                  "dofs": list(sol.dofs), "displacement": u.tolist(), "slices": p["bearing.slices"]}
         if rows_n == 1:
             q["rating_life"] = _rating(scene, sol.slice_loads[0])
+            fields["slice_loads"] = sol.slice_loads[0]
         else:
             shares = 100.0 * sol.row_radial / sol.row_radial.sum()
             for r, sh in enumerate(shares):
@@ -414,7 +424,8 @@ def measured(scene: Scene, progress=None) -> ModelResult:
 
 MODELS: dict[str, Callable[..., ModelResult]] = {"rigid_ring": rigid_ring, "integral": integral,
                                                  "condensed": condensed, "fem": fem,
-                                                 "flexible_chock": flexible_chock, "measured": measured}
+                                                 "flexible_chock": flexible_chock, "condensed3d": condensed3d,
+                                                 "resolved": resolved, "measured": measured}
 STRESS_QUANTITIES = ("q_max", "roller_loads_max")
 
 

@@ -12,8 +12,9 @@ from ..plots import plt, save_figure
 from . import Figure, KindSection, Table
 
 COLOURS = {"fem": "tab:red", "condensed": "tab:blue", "rigid_ring": "k", "integral": "tab:green",
-           "flexible_chock": "tab:purple"}
-MARKERS = {"fem": "o", "condensed": "x", "rigid_ring": "+", "integral": ".", "flexible_chock": "s"}
+           "flexible_chock": "tab:purple", "resolved": "tab:red", "condensed3d": "tab:blue"}
+MARKERS = {"fem": "o", "condensed": "x", "rigid_ring": "+", "integral": ".", "flexible_chock": "s",
+           "resolved": "o", "condensed3d": "x"}
 # several rows: the models that give row shares, as Table 3 names them
 MULTI_ROW_MODELS = {"rigid_ring": "rigid rings, ISO slices (femcheck)",
                     "flexible_chock": "elastic chock + roll, ISO slices (femcheck)"}
@@ -38,8 +39,9 @@ def _polar(run: RunResult, path: Path) -> str | None:
         q = np.asarray(m.fields["roller_loads"])
         order = np.argsort(psi)
         closed = np.r_[order, order[:1]]
-        if name == "fem":
-            ax.bar(psi, q, width=0.6 * 2 * np.pi / len(psi), color=COLOURS[name], alpha=0.3, label="fem (reference)")
+        if name in run.params.get("models.references", ()) and name in ("fem", "resolved"):
+            ax.bar(psi, q, width=0.6 * 2 * np.pi / len(psi), color=COLOURS[name], alpha=0.3,
+                   label=f"{name} (reference)")
         else:
             ax.plot(psi[closed], q[closed], marker=MARKERS.get(name, "."), color=COLOURS.get(name), lw=0.8,
                     label=name)
@@ -179,6 +181,33 @@ def _rows(run: RunResult, path: Path) -> str | None:
     return save_figure(fig, path)
 
 
+def _slices(run: RunResult, path: Path) -> str | None:
+    """Slice loads along the two most loaded rollers of every model with ISO slices (the reference's with the
+    error estimates of its certificate as bars)."""
+    models = {n: m for n, m in run.models.items() if m.status == "ok" and np.ndim(m.fields.get("slice_loads")) == 2}
+    if not models:
+        return None
+    ref = next((n for n in run.params.get("models.references", ()) if n in models), None)
+    order = np.argsort(-np.asarray((models[ref] if ref else next(iter(models.values()))).fields["roller_loads"]))
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 3.8), sharey=True)
+    for ax, j in zip(axes, order[:2]):
+        for n, m in models.items():
+            q = np.asarray(m.fields["slice_loads"])[j]
+            k = np.arange(q.size) + 1
+            err = m.fields.get("slice_load_estimates")
+            if err is not None:
+                ax.errorbar(k, q, yerr=np.asarray(err)[j], color=COLOURS.get(n), marker=MARKERS.get(n, "."),
+                            lw=0.9, capsize=2, label=f"{n} (reference)" if n == ref else n)
+            else:
+                ax.plot(k, q, color=COLOURS.get(n), marker=MARKERS.get(n, "."), lw=0.9, label=n)
+        psi = np.degrees(float(np.asarray(models[ref or n].fields["roller_angle"])[j]))
+        ax.set_title(f"roller at psi = {psi:.0f} deg")
+        ax.set_xlabel("slice (1 .. n_s along the roller)")
+    axes[0].set_ylabel("slice load q (N)")
+    axes[0].legend(fontsize=7)
+    return save_figure(fig, path)
+
+
 def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
     out = KindSection()
     fe = "fem" in run.models
@@ -189,6 +218,8 @@ def section(run: RunResult, outdir: Path, prefix: str) -> KindSection:
             ("rings", _rings, "FE finest level: elastic deformation of the inner (blue, relative to the shaft it "
                               "is tied to) and outer ring (red, in the housing) over the undeformed rings (grey), "
                               "magnified; rollers shaded by their load."),
+            ("slices", _slices, "Slice loads (N) along the two most loaded rollers: each model's ISO/TS 16281 "
+                                "slices, the reference's with its certificate's error estimates."),
             ("rows", _rows, "Several rows: each row's share of the radial load (seed 003 Table 3's experiment "
                             "and models beside femcheck's) and the roller loads of every row.")):
         f = fn(run, outdir / f"{prefix}-{name}.png")
