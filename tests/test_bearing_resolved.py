@@ -89,8 +89,23 @@ def test_misalignment_loads_the_same_end_as_the_condensed_model(misaligned):
     assert s0 == pytest.approx(s0[::-1], rel=1e-6)
 
 
-def test_corrections_are_held_over_their_bins():
-    """D_fine = P D P^T: a bin's value over its cells, blocks placed per contact and roller."""
+def test_bins_are_interpolated_linearly_onto_the_cells():
+    """P reproduces a linear function of y between the first and last bin centres, holds the end bins' values
+    beyond them, and its rows sum to 1 (a cell's force reaches the bins unchanged in sum)."""
+    bins, ny = 5, 40
+    P = br._bin_map(ny, bins)
+    yb = (np.arange(bins) + 0.5) / bins
+    yc = (np.arange(ny) + 0.5) / ny
+    f = 2.0 - 3.0 * yb
+    inside = (yc >= yb[0]) & (yc <= yb[-1])
+    assert np.allclose((P @ f)[inside], (2.0 - 3.0 * yc)[inside], rtol=0, atol=1e-12)
+    assert np.allclose((P @ f)[yc < yb[0]], f[0], rtol=0, atol=1e-12)
+    assert np.allclose((P @ f)[yc > yb[-1]], f[-1], rtol=0, atol=1e-12)
+    assert np.allclose(P.sum(axis=1), 1.0, rtol=0, atol=1e-14)
+
+
+def test_corrections_are_placed_per_contact_and_roller():
+    """D_fine = P D P^T: the end cells carry their end bin's value; blocks placed per contact and roller."""
     row = br.ResolvedRow(**ROW)
     rng = np.random.default_rng(1)
     n = 2
@@ -100,8 +115,8 @@ def test_corrections_are_held_over_their_bins():
     Z, ny = 14, 4
     # roller 3: inner cell 0 (bin 0) <- outer cell 3 (bin 1)
     assert D[(0 * Z + 3) * ny + 0, (1 * Z + 3) * ny + 3] == roller[0, n + 1]
-    # outer ring: roller 2 cell 2 (bin 1) <- roller 5 cell 1 (bin 0)
-    assert D[(1 * Z + 2) * ny + 2, (1 * Z + 5) * ny + 1] == ring[2 * n + 1, 5 * n + 0]
+    # outer ring: roller 2 cell 3 (bin 1) <- roller 5 cell 0 (bin 0)
+    assert D[(1 * Z + 2) * ny + 3, (1 * Z + 5) * ny + 0] == ring[2 * n + 1, 5 * n + 0]
     # no inner ring: no coupling between inner contacts of different rollers
     assert D[(0 * Z + 2) * ny, (0 * Z + 5) * ny] == 0.0
 

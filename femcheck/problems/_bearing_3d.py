@@ -213,9 +213,9 @@ def _run(p, g, lv: dict[str, int], cache: dict, progress=None) -> dict:
 
 
 # formal orders of the parts (certify_formal caps the observed order by them, Roache 1998 §5.9): P2 and S2 elements
-# (2) for the FE parts; the bins hold the correction piecewise constant (1); the contact grid's moving contact
+# (2) for the FE parts; the bins interpolate the correction linearly (2); the contact grid's moving contact
 # edge (1)
-FORMAL_ORDER = {"roller": 2.0, "ring": 2.0, "bins": 1.0, "grid": 1.0}
+FORMAL_ORDER = {"roller": 2.0, "ring": 2.0, "bins": 2.0, "grid": 1.0}
 # Below this fraction of the family's scale (Q_max for roller loads, the largest slice load for slice loads: the
 # scales the comparisons are normalised by) a part's changes carry no order: the re-meshed roller FE (Gmsh) and the
 # contact sets moving across cells scatter by up to ~5e-4 of the scale between levels (measured on the 209 case).

@@ -12,6 +12,9 @@ Models:
                   (:mod:`femcheck.bem.mill_chock`; spec P3, seed 003 Table 3).
   ``fem``         2D plane-strain FE of the section, frictionless contact, load control, geometric similarity,
                   mesh levels with certificates (:mod:`femcheck.fem.bearing2d`). A stored reference.
+  ``condensed3d`` one row in 3D: ring compliances condensed from a coarse 3D FE, ISO/TS 16281 slices (spec P3).
+  ``resolved``    its reference: every roller's two contacts on fine grids, half-space + FE finite-body
+                  corrections, certified in four parts (:mod:`femcheck.problems._bearing_3d`). A stored reference.
 Quantities (SI): ``q_max`` (N), ``radial_deflection`` (m, shaft relative to housing), ``loaded_rollers``,
 ``load_zone_angle`` (rad, half-angle), ``load_zone_parameter`` (eps), ``stribeck_factor`` Z Q_max/F_r,
 ``total_force`` (N, sum Q_j cos psi_j cos alpha: the equilibrium check), ``rating_life`` (L10r, 1e6 rev, law
@@ -31,9 +34,9 @@ from ..analytic import bearing_laws as laws
 from ..analytic import iso16281
 from ..analytic.bearing_load import integral_model, load_integrals, rigid_ring as rigid_ring_solve, zone_from_profile
 from ..errors import InputError
-from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
+from ._bearing_2d import DEFAULTS_2D, SCHEMA_2D, section
 from ._bearing_3d import DEFAULTS_3D, SCHEMA_3D, condensed3d, resolved, validate_3d
 from ._bearing_chock import CHOCK_SCHEMA, flexible_chock, validate_chock
 
@@ -85,29 +88,7 @@ SCHEMA: dict[str, Key] = {
     "materials.rings.nu": Key("float", "-", "Poisson's ratio of the rings", lo=-1.0, hi=0.5),
     "materials.rings.rigid": Key("bool", "-", "rigid rings (rigid raceways)"),
     **model_keys(MODEL_NAMES),
-    "numerics.fem_levels": Key("int", "-", "FE mesh levels (>= 3 for certificates)", lo=1, hi=6, lo_closed=True,
-                               hi_closed=True),
-    "numerics.fem_ratio": Key("float", "-", "FE refinement ratio between levels", lo=1.1, hi=2.0, lo_closed=True,
-                              hi_closed=True),
-    "numerics.fem_h_contact": Key("float", "b", "coarsest contact-zone spacing / Hertz half-width", lo=0.01,
-                                  hi=1.0, lo_closed=True, hi_closed=True),
-    "numerics.fem_zone": Key("float", "b", "contact-zone half-length / Hertz half-width", lo=1.2, hi=10.0,
-                             lo_closed=True, hi_closed=True),
-    "numerics.fem_grading": Key("float", "-", "coarsest mesh growth per unit distance", lo=0.05, hi=2.0,
-                                lo_closed=True, hi_closed=True),
-    "numerics.fem_h_max_ring": Key("float", "t", "coarsest largest ring element / ring thickness", lo=0.05, hi=2.0,
-                                   lo_closed=True, hi_closed=True),
-    "numerics.fem_h_max_roller": Key("float", "R", "coarsest largest roller element / roller radius", lo=0.02,
-                                     hi=1.0, lo_closed=True, hi_closed=True),
-    "numerics.fem_order": Key("int", "-", "element order", lo=1, hi=2, lo_closed=True, hi_closed=True),
-    "numerics.fem_method": Key("str", "-", "contact algorithm", choices=("active_set", "penalty")),
-    "numerics.fem_penalty": Key("float", "-", "penalty stiffness / (E* w / h)", lo=1.0, hi=1e9, hi_closed=True),
-    "numerics.fem_similarity": Key("str", "-", "rollers: one condensed and rotated, or all meshed as one body",
-                                   choices=("rotate", "mesh_all")),
-    "numerics.condensed_h_contact": Key("float", "b", "condensed model: patch-zone spacing / b_0", lo=0.02, hi=1.0,
-                                        lo_closed=True, hi_closed=True),
-    "numerics.condensed_roller": Key("str", "-", "condensed model: roller compliance",
-                                     choices=("closed_form", "fem")),
+    **SCHEMA_2D,
     **CHOCK_SCHEMA,
     **SCHEMA_3D,
     "paper.row_shares_measured": Key("floats", "%", "seed 003 Table 3: measured row shares", lo=0.0, hi=100.0,
@@ -138,19 +119,7 @@ DEFAULTS: dict[str, Any] = {
     "models.run": ["rigid_ring", "integral"],
     "models.references": ["rigid_ring"],
     "models.contrast": [],
-    "numerics.fem_levels": 3,
-    "numerics.fem_ratio": 2.0**0.5,
-    "numerics.fem_h_contact": 0.25 / 2**0.5,
-    "numerics.fem_zone": 2.5,
-    "numerics.fem_grading": 0.6,
-    "numerics.fem_h_max_ring": 0.5,
-    "numerics.fem_h_max_roller": 0.25,
-    "numerics.fem_order": 2,
-    "numerics.fem_method": "active_set",
-    "numerics.fem_penalty": 1.0e3,
-    "numerics.fem_similarity": "rotate",
-    "numerics.condensed_h_contact": 0.25,
-    "numerics.condensed_roller": "closed_form",
+    **DEFAULTS_2D,
     "chock.seat": "spherical",
     "numerics.chock_between": 1,
     "numerics.chock_radial": 2,
@@ -173,27 +142,10 @@ DEPENDS = {
 }
 
 
-
 def clearance(params: dict[str, Any]) -> float:
     """Diametral clearance P_d = d_o - d_i - 2 D (m; negative: preload)."""
     return params["geometry.outer_raceway_diameter"] - params["geometry.inner_raceway_diameter"] - \
         2.0 * params["geometry.roller_diameter"]
-
-
-def section(params: dict[str, Any]):
-    """The 2D section (:class:`femcheck.fem.bearing2d.BearingSection`) of a single-row scene."""
-    from ..fem.bearing2d import BearingSection
-
-    rings = Elastic(params.get("materials.rings.E", 1.0), params.get("materials.rings.nu", 0.0),
-                    params["materials.rings.rigid"])
-    return BearingSection(params["bearing.rollers"], 0.5 * params["geometry.roller_diameter"],
-                          0.5 * params["geometry.inner_raceway_diameter"],
-                          0.5 * params["geometry.outer_raceway_diameter"],
-                          0.5 * params.get("geometry.bore_diameter", 0.0),
-                          0.5 * params.get("geometry.outside_diameter", 0.0),
-                          params["geometry.roller_length"], params["load.radial"], params["load.angle"],
-                          Elastic(params["materials.rollers.E"], params["materials.rollers.nu"]), rings,
-                          params["support.housing_half_angle"])
 
 
 def roller_law(params: dict[str, Any]):
