@@ -126,7 +126,7 @@ class ResolvedResult:
         return self.strip_loads.reshape(self.strip_loads.shape[0], slices, per).sum(axis=2)
 
 
-def _bin_map(ny: int, bins: int) -> np.ndarray:
+def bin_map(ny: int, bins: int) -> np.ndarray:
     """P (n_y, n_b): linear interpolation from the bins' centres to the axial cells' centres (held constant beyond
     the end bins' centres); rows sum to 1, so P^T carries a cell's force to its two nearest bins unchanged in sum.
     Linear, not bin-wise constant: a correction held constant over each bin steps at the bin edges, and a step in
@@ -145,17 +145,17 @@ def _bin_map(ny: int, bins: int) -> np.ndarray:
 
 def fine_corrections(row: ResolvedRow, corr: CorrectionTables, ny: int) -> np.ndarray:
     """The corrections on the fine axial cells, Dfine (2 Z n_y, 2 Z n_y) m/N, index (c Z + j) n_y + l:
-    D_fine = P D P^T with P the bins-to-cells linear interpolation (:func:`_bin_map`), symmetric when D is;
+    D_fine = P D P^T with P the bins-to-cells linear interpolation (:func:`bin_map`), symmetric when D is;
     the bins' resolution converges with n_b at second order for a smooth correction."""
     Z = row.rollers
     D = np.zeros((2 * Z * ny, 2 * Z * ny))
-    n, Pr = corr.roller_bins, _bin_map(ny, corr.roller_bins)
+    n, Pr = corr.roller_bins, bin_map(ny, corr.roller_bins)
     for j in range(Z):
         for a in (0, 1):
             for b in (0, 1):
                 ia, ib = (a * Z + j) * ny, (b * Z + j) * ny
                 D[ia:ia + ny, ib:ib + ny] += Pr @ corr.roller[a * n:(a + 1) * n, b * n:(b + 1) * n] @ Pr.T
-    n, Pg = corr.ring_bins, _bin_map(ny, corr.ring_bins)
+    n, Pg = corr.ring_bins, bin_map(ny, corr.ring_bins)
     PZ = np.kron(np.eye(Z), Pg)
     for c, ring in ((0, corr.inner_ring), (1, corr.outer_ring)):
         if ring is not None:

@@ -1,5 +1,7 @@
 """The bearing_load kind's 3D single-row models: the 3D condensed model (ring compliances from a coarse 3D FE,
-ISO/TS 16281 slices; :mod:`femcheck.bem.bearing_condensed3d`) and its contact-resolved reference (every roller's
+ISO/TS 16281 slices; :mod:`femcheck.bem.bearing_condensed3d`), the coupled-slice model (Hertz strips coupled along
+the rollers through the half-space, with the reference's base-level FE corrections; :mod:`femcheck.bem.bearing_strips`)
+and their contact-resolved reference (every roller's
 two contacts solved on fine grids with half-space + FE-correction compliances; :mod:`femcheck.bem.bearing_resolved`,
 :mod:`femcheck.fem.crb_corrections`). Rings: the outer ring clamped in its housing over
 ``support.housing_half_angle``, the inner ring's bore clamped to a rigid shaft.
@@ -21,6 +23,7 @@ import numpy as np
 from ..analytic.bearing_load import roller_angles
 from ..errors import InputError
 from ..materials import Elastic
+from ..meshes.cache import cached_builder
 from ..result import ModelResult
 from ..scene import Key
 
@@ -45,6 +48,8 @@ SCHEMA_3D: dict[str, Key] = {
                                         "5 F_r/Z", lo=1.1, hi=5.0, lo_closed=True, hi_closed=True),
     "numerics.resolved_levels": Key("int", "-", "resolved reference: 1 (base only) or 3 (certificate)", lo=1, hi=3,
                                     lo_closed=True, hi_closed=True),
+    "numerics.strips_per_slice": Key("int", "-", "coupled-slice model: Hertz strips per slice", lo=1, hi=32,
+                                     lo_closed=True, hi_closed=True),
 }
 DEFAULTS_3D: dict[str, Any] = {
     "numerics.condensed3d_patch": 2.0e-3,
@@ -57,6 +62,8 @@ DEFAULTS_3D: dict[str, Any] = {
     "numerics.resolved_along": 80,
     "numerics.resolved_half_width": 1.75,
     "numerics.resolved_levels": 3,
+    # 8 strips: the slice loads move by 0.3 % of the largest slice from 8 to 16 strips (crb-3d-misaligned)
+    "numerics.strips_per_slice": 8,
 }
 # the roller FE's element size at the contact line per level of layers (fraction of the patch width): refined with
 # the layers so that the elements stay about as long across as along
@@ -67,16 +74,20 @@ _ROLLER_RING_CELLS = 3          # ring mesh: cells from a patch to the sector ed
 def validate_3d(params: dict[str, Any], run: set[str]) -> None:
     """Inputs of the 3D models: a single row of cylindrical rollers, elastic rings with their sections."""
     if params["bearing.rows"] > 1 or params["bearing.contact_angle"] > 0 or params["load.axial"] > 0:
-        raise InputError("models.run", "condensed3d and resolved: a single-row cylindrical roller bearing (rows 1, "
+        raise InputError("models.run", "the 3D models: a single-row cylindrical roller bearing (rows 1, "
                          "contact angle 0, no axial load)")
     for key in ("geometry.bore_diameter", "geometry.outside_diameter", "geometry.width", "materials.rings.E",
                 "materials.rings.nu"):
         if key not in params:
-            raise InputError(key, "required by the 3D models (condensed3d, resolved)")
+            raise InputError(key, "required by the 3D models (condensed3d, coupled_slices, resolved)")
     if params["geometry.width"] < params["geometry.roller_length"]:
         raise InputError("geometry.width", f"{params['geometry.width']:g} m; allowed: >= geometry.roller_length "
                          f"({params['geometry.roller_length']:g} m)")
-    if "resolved" in run:
+    if "coupled_slices" in run and params["bearing.crown"] == "iso" and \
+            params["geometry.roller_length"] > 2.5 * params["geometry.roller_diameter"]:
+        raise InputError("geometry.roller_length", f"{params['geometry.roller_length']:g} m with the ISO crown in "
+                         f"coupled_slices; allowed: <= 2.5 roller diameters (one logarithmic arc)")
+    if run & {"resolved", "coupled_slices"}:
         lo = params["geometry.roller_length"]
         if params.get("geometry.roller_overall_length", 0.0) < lo:
             raise InputError("geometry.roller_overall_length", f"required by the resolved reference; allowed: >= "
@@ -135,6 +146,51 @@ def condensed3d(scene, progress=None) -> ModelResult:
     return ModelResult("condensed3d", quantities=q, stats=stats, fields=fields)
 
 
+def coupled_slices(scene, progress=None) -> ModelResult:
+    """Hertz strips coupled along the rollers through the half-space, with the finite-body corrections of the
+    resolved reference's base level (:mod:`femcheck.bem.bearing_strips`); each slice split into
+    ``numerics.strips_per_slice`` strips, the loads summed per slice."""
+    from ..bem import bearing_condensed3d as bc
+    from ..bem import bearing_strips as bs
+    from ..bem.bearing_resolved import bin_map
+
+    p = scene.params
+    g = _geometry(p)
+    _one_material(p, "coupled_slices")
+    Z, ns, m = g["Z"], p["bearing.slices"], p["numerics.strips_per_slice"]
+    base = _levels({**p, "numerics.resolved_levels": 1})[0]
+    t0 = time.perf_counter()
+    if progress:
+        progress("coupled slices: finite-body corrections (roller and ring FE; cached across loads)")
+    corr, dofs = _cached_corrections({k: v for k, v in sorted(p.items()) if k.startswith(_CORRECTION_KEYS)}, base)
+    build = time.perf_counter() - t0
+    n, nr = corr.roller_bins, corr.ring_bins
+    R = corr.roller
+    # the slice load is the same at a roller's two contacts: its compliance is the sum of the four blocks
+    roller = R[:n, :n] + R[:n, n:] + R[n:, :n] + R[n:, n:]
+    Pr, Pg = bin_map(ns * m, n), np.kron(np.eye(Z), bin_map(ns * m, nr))
+    D = np.kron(np.eye(Z), Pr @ roller @ Pr.T) + Pg @ (corr.inner_ring + corr.outer_ring) @ Pg.T
+    row = bc.SlicedRow(Z, g["L"], g["D"], g["clearance"], ns * m, p["bearing.crown"], p["bearing.tilt"],
+                       load_angle=p["load.angle"])
+    if progress:
+        progress(f"coupled slices: {Z} rollers x {ns * m} strips")
+    sol = bs.solve(row, g["r_i"], g["r_o"], _rings(p), D, p["load.radial"])
+    slices = sol.slice_loads.reshape(Z, ns, m).sum(axis=2)
+    q, fields = _slice_fields(row.psi, sol.roller_loads, slices)
+    q["stribeck_factor"] = Z * q["q_max"] / p["load.radial"]
+    q["radial_deflection"] = float(np.hypot(*sol.u[:2]))
+    stats = {"iterations": sol.iterations, "width_iterations": sol.width_iterations, "residual": sol.residual,
+             "strips": ns * m, **dofs, "corrections_time_s": build, "solve_time_s": sol.time_s,
+             "displacement": sol.u.tolist()}
+    return ModelResult("coupled_slices", quantities=q, stats=stats, fields=fields)
+
+
+def _one_material(p: dict[str, Any], model: str) -> None:
+    if (p["materials.rings.E"], p["materials.rings.nu"]) != (p["materials.rollers.E"], p["materials.rollers.nu"]):
+        raise InputError("materials.rings.E", f"{model} takes rollers and rings of one material; allowed: "
+                         "materials.rings = materials.rollers")
+
+
 def _hertz_half_width(p: dict[str, Any], g: dict[str, float], radius: float) -> float:
     """Hertz half-width (m) of a line contact of relative radius ``radius`` at the roller load 5 F_r/Z (Johnson 1985
     eq. 4.45; a grid extent only: the solver refuses a contact that reaches the grid's edge)."""
@@ -163,7 +219,9 @@ def _levels(p: dict[str, Any]) -> list[dict[str, int]]:
     return runs
 
 
-def _run(p, g, lv: dict[str, int], cache: dict, progress=None) -> dict:
+def _corrections(p, g, lv: dict[str, int], cache: dict, progress=None):
+    """The finite-body corrections (:class:`femcheck.bem.bearing_resolved.CorrectionTables`) of level ``lv`` and the
+    FE sizes; the roller and ring FE are solved once per distinct mesh (``cache``)."""
     from ..bem import bearing_resolved as br
     from ..fem import crb_corrections as cc
     from ..fem.rolling_compliance import MeshSettings
@@ -172,7 +230,6 @@ def _run(p, g, lv: dict[str, int], cache: dict, progress=None) -> dict:
     rings = _rings(p)
     patch = p["numerics.resolved_patch"]
     ring_bins = p["numerics.resolved_bins"]
-    t0 = time.perf_counter()
     rkey = ("roller", lv["layers"], lv["bins"])
     if rkey not in cache:
         if progress:
@@ -195,9 +252,29 @@ def _run(p, g, lv: dict[str, int], cache: dict, progress=None) -> dict:
     corr = br.CorrectionTables(rol.D, cc.filled(ri.D, g["Z"], 1), cc.filled(ro.D, g["Z"], 1), lv["bins"], ring_bins)
     dofs = {"roller_dofs": rol.stats["n_dofs"], "inner_ring_dofs": ri.stats["n_dofs"],
             "outer_ring_dofs": ro.stats["n_dofs"]}
+    return corr, dofs
+
+
+# what the corrections depend on (not the load, the misalignment or the crown): a load sweep reuses them
+_CORRECTION_KEYS = ("geometry.", "materials.", "support.", "bearing.rollers", "numerics.resolved_")
+
+
+@cached_builder("crb-corrections")
+def _cached_corrections(params: dict[str, Any], lv: dict[str, int]):
+    """:func:`_corrections` through the content-keyed cache (the fast model's, never the reference's: a stored
+    reference re-solves its FE when checked)."""
+    return _corrections(params, _geometry(params), lv, {})
+
+
+def _run(p, g, lv: dict[str, int], cache: dict, progress=None) -> dict:
+    """One run of the reference at level ``lv`` (module doc): roller and slice loads and the solver's record."""
+    from ..bem import bearing_resolved as br
+
+    t0 = time.perf_counter()
+    corr, dofs = _corrections(p, g, lv, cache, progress)
     t_corr = time.perf_counter() - t0
     row = br.ResolvedRow(g["Z"], g["D"], g["L"], g["r_i"], g["r_o"], g["clearance"], p["bearing.tilt"],
-                         p["load.angle"], p["bearing.crown"], rings)
+                         p["load.angle"], p["bearing.crown"], _rings(p))
     hw = tuple(p["numerics.resolved_half_width"] * _hertz_half_width(p, g, row.curvature_radius(c))
                for c in ("inner", "outer"))
     if progress:
@@ -272,9 +349,7 @@ def resolved(scene, progress=None) -> ModelResult:
     """The contact-resolved reference (module doc): roller and slice loads with their certificates."""
     p = scene.params
     g = _geometry(p)
-    if (p["materials.rings.E"], p["materials.rings.nu"]) != (p["materials.rollers.E"], p["materials.rollers.nu"]):
-        raise InputError("materials.rings.E", "the resolved reference takes rollers and rings of one material; "
-                         "allowed: materials.rings = materials.rollers")
+    _one_material(p, "the resolved reference")
     cache: dict = {}
     runs = [_run(p, g, lv, cache, progress) for lv in _levels(p)]
     base = runs[0]

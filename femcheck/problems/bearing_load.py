@@ -13,7 +13,9 @@ Models:
   ``fem``         2D plane-strain FE of the section, frictionless contact, load control, geometric similarity,
                   mesh levels with certificates (:mod:`femcheck.fem.bearing2d`). A stored reference.
   ``condensed3d`` one row in 3D: ring compliances condensed from a coarse 3D FE, ISO/TS 16281 slices (spec P3).
-  ``resolved``    its reference: every roller's two contacts on fine grids, half-space + FE finite-body
+  ``coupled_slices`` one row in 3D: Hertz strips coupled along the rollers through the half-space, the FE's
+                  finite-body corrections (:mod:`femcheck.bem.bearing_strips`).
+  ``resolved``    their reference: every roller's two contacts on fine grids, half-space + FE finite-body
                   corrections, certified in four parts (:mod:`femcheck.problems._bearing_3d`). A stored reference.
 Quantities (SI): ``q_max`` (N), ``radial_deflection`` (m, shaft relative to housing), ``loaded_rollers``,
 ``load_zone_angle`` (rad, half-angle), ``load_zone_parameter`` (eps), ``stribeck_factor`` Z Q_max/F_r,
@@ -37,10 +39,11 @@ from ..errors import InputError
 from ..result import ModelResult
 from ..scene import Key, Scene, model_keys, tolerance_key
 from ._bearing_2d import DEFAULTS_2D, SCHEMA_2D, section
-from ._bearing_3d import DEFAULTS_3D, SCHEMA_3D, condensed3d, resolved, validate_3d
+from ._bearing_3d import DEFAULTS_3D, SCHEMA_3D, condensed3d, coupled_slices, resolved, validate_3d
 from ._bearing_chock import CHOCK_SCHEMA, flexible_chock, validate_chock
 
-MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "flexible_chock", "condensed3d", "resolved", "measured")
+MODEL_NAMES = ("rigid_ring", "integral", "condensed", "fem", "flexible_chock", "condensed3d", "coupled_slices",
+               "resolved", "measured")
 # what a bearing is sized with: the largest roller load (life, static capacity), then the deflection
 DESIGN_QUANTITIES = ("q_max", "row_share", "radial_deflection")
 # Forces are per roller (N; the 2D section's laws give a roller's load for its effective length).
@@ -137,6 +140,8 @@ DEPENDS = {
     "flexible_chock": {"params": ("geometry.", "bearing.", "load.", "materials.structure.", "chock.", "roll.",
                                   "numerics.chock_")},
     "condensed3d": {"params": ("geometry.", "bearing.", "load.", "materials.", "support.", "numerics.condensed3d_")},
+    "coupled_slices": {"params": ("geometry.", "bearing.", "load.", "materials.", "support.", "numerics.resolved_",
+                                  "numerics.strips_")},
     "resolved": {"params": ("geometry.", "bearing.", "load.", "materials.", "support.", "numerics.resolved_"),
                  "reference": True, "coarse": {"numerics.resolved_levels": 1}},
 }
@@ -184,7 +189,7 @@ def validate(params: dict[str, Any]) -> None:
     run = set(params["models.run"]) | set(params["models.references"])
     if "flexible_chock" in run:
         validate_chock(params)
-    if run & {"condensed3d", "resolved"}:
+    if run & {"condensed3d", "coupled_slices", "resolved"}:
         validate_3d(params, run)
     two_d = run & {"condensed", "fem"}
     if two_d:
@@ -377,7 +382,8 @@ def measured(scene: Scene, progress=None) -> ModelResult:
 MODELS: dict[str, Callable[..., ModelResult]] = {"rigid_ring": rigid_ring, "integral": integral,
                                                  "condensed": condensed, "fem": fem,
                                                  "flexible_chock": flexible_chock, "condensed3d": condensed3d,
-                                                 "resolved": resolved, "measured": measured}
+                                                 "coupled_slices": coupled_slices, "resolved": resolved,
+                                                 "measured": measured}
 STRESS_QUANTITIES = ("q_max", "roller_loads_max")
 
 

@@ -12,9 +12,10 @@ from ..plots import plt, save_figure
 from . import Figure, KindSection, Table
 
 COLOURS = {"fem": "tab:red", "condensed": "tab:blue", "rigid_ring": "k", "integral": "tab:green",
-           "flexible_chock": "tab:purple", "resolved": "tab:red", "condensed3d": "tab:blue"}
+           "flexible_chock": "tab:purple", "resolved": "tab:red", "condensed3d": "tab:blue",
+           "coupled_slices": "tab:green"}
 MARKERS = {"fem": "o", "condensed": "x", "rigid_ring": "+", "integral": ".", "flexible_chock": "s",
-           "resolved": "o", "condensed3d": "x"}
+           "resolved": "o", "condensed3d": "x", "coupled_slices": "d"}
 # several rows: the models that give row shares, as Table 3 names them
 MULTI_ROW_MODELS = {"rigid_ring": "rigid rings, ISO slices (femcheck)",
                     "flexible_chock": "elastic chock + roll, ISO slices (femcheck)"}
