@@ -168,8 +168,11 @@ def test_scene_grades_the_3d_models_against_the_stored_reference(monkeypatch):
     from femcheck.scene import load_scene
     from stored_references import use_stored_references
 
+    from grading import assert_fully_graded
+
     use_stored_references(monkeypatch)
     res = run(load_scene("crb-3d-misaligned"))
+    assert_fully_graded(res, "crb-3d-misaligned")
     ref = res.models["resolved"]
     certs = ref.stats["certificates"]
     assert certs["roller_loads_max"]["certified"] and certs["roller_loads_max"]["error_estimate"] < 0.005

@@ -128,8 +128,10 @@ def test_scene_reproduces_the_measured_row_ordering_that_rigid_rings_miss():
     axial load, rigid rings give row 4 above row 3; the elastic chock and roll turn it round (spec bearing-load
     2.3: 'that needs the chock/neck elasticity')."""
     import femcheck
+    from grading import assert_fully_graded
 
     res = femcheck.run("trb-mill-4row")
+    assert_fully_graded(res, "trb-mill-4row")
     flex, rigid = res.models["flexible_chock"].quantities, res.models["rigid_ring"].quantities
     assert sum(flex[f"row_share_{r}"] for r in range(1, 5)) == pytest.approx(100.0, abs=1e-9)
     assert flex["total_force"] == pytest.approx(73.8e3, rel=1e-9)
