@@ -111,7 +111,7 @@ def test_corrections_are_placed_per_contact_and_roller():
     n = 2
     roller = rng.normal(size=(2 * n, 2 * n))
     ring = rng.normal(size=(14 * n, 14 * n))
-    D = br.fine_corrections(row, br.CorrectionTables(roller, None, ring, n, n), 4)
+    D = br.fine_corrections(row.rollers, br.CorrectionTables(roller, None, ring, n, n), 4)
     Z, ny = 14, 4
     # roller 3: inner cell 0 (bin 0) <- outer cell 3 (bin 1)
     assert D[(0 * Z + 3) * ny + 0, (1 * Z + 3) * ny + 3] == roller[0, n + 1]

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from femcheck.analytic.iso16281 import crown_drop
+from femcheck.analytic.iso16281 import crown_drop, crown_drop_slice_means
 from femcheck.bem import bearing_strips as bs
 from femcheck.bem.bearing_condensed3d import SlicedRow
 from femcheck.bem.bearing_condensed3d import solve as solve_iso
@@ -67,7 +67,7 @@ def test_slice_mean_crown_is_the_mean_of_the_iso_profile():
     slice, which holds the logarithmic singularity at the roller's end, with QUADPACK's log(b - y) weight
     (P = -k D [ln(L/2 - y) + ln(2/L) + ln(1 + 2y/L)]); 1e-9 relative."""
     L, D, n = 9.6e-3, 10e-3, 10
-    means = bs.slice_mean_crown(L, D, n)
+    means = crown_drop_slice_means(L, D, n)
     edges = np.linspace(-L / 2, L / 2, n + 1)
     for k in range(1, n - 1):
         val, _ = quad(lambda y: float(crown_drop(np.array([y]), L, D)[0]), edges[k], edges[k + 1], limit=200)

@@ -33,11 +33,31 @@ def crown_drop(x: np.ndarray, length: float, diameter: float, tapered: bool = Fa
     a straight middle of length L_we - 2.5 D_we and the same logarithmic ends over 1.25 D_we each (k = 0.0005)."""
     x = np.abs(np.asarray(x, dtype=float))
     if length <= 2.5 * diameter:
-        k = 0.00045 if tapered else 0.00035
-        return k * diameter * np.log(1.0 / (1.0 - (2.0 * x / length) ** 2))
+        return _short_k(tapered) * diameter * np.log(1.0 / (1.0 - (2.0 * x / length) ** 2))
     flat = 0.5 * (length - 2.5 * diameter)
     s = np.clip((x - flat) / (1.25 * diameter), 0.0, None)
     return 0.0005 * diameter * np.log(1.0 / (1.0 - s**2))
+
+
+def _short_k(tapered: bool) -> float:
+    """k of the one-arc profile (L_we <= 2.5 D_we), TS eq. 42."""
+    return 0.00045 if tapered else 0.00035
+
+
+def crown_drop_slice_means(length: float, diameter: float, slices: int, tapered: bool = False) -> np.ndarray:
+    """:func:`crown_drop` averaged over each of ``slices`` equal slices (m), for the one-arc profile
+    (L_we <= 2.5 D_we): int ln(1 - s^2) ds = (1+s) ln(1+s) - (1-s) ln(1-s) - 2 s (s = 2x/L_we), finite at the
+    roller's ends where P itself is not."""
+    if length > 2.5 * diameter:
+        raise ValueError("the slice means are written for L_we <= 2.5 D_we (one logarithmic arc)")
+    edges = np.linspace(-1.0, 1.0, slices + 1)
+
+    def prim(s):
+        a, c = 1.0 + s, 1.0 - s
+        return np.where(a > 0, a * np.log(np.where(a > 0, a, 1.0)), 0.0) \
+            - np.where(c > 0, c * np.log(np.where(c > 0, c, 1.0)), 0.0) - 2.0 * s
+
+    return -_short_k(tapered) * diameter * np.diff(prim(edges)) / np.diff(edges)
 
 
 def slice_law(length: float, slices: int) -> PowerLaw:

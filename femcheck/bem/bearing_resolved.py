@@ -143,11 +143,11 @@ def bin_map(ny: int, bins: int) -> np.ndarray:
     return P
 
 
-def fine_corrections(row: ResolvedRow, corr: CorrectionTables, ny: int) -> np.ndarray:
+def fine_corrections(rollers: int, corr: CorrectionTables, ny: int) -> np.ndarray:
     """The corrections on the fine axial cells, Dfine (2 Z n_y, 2 Z n_y) m/N, index (c Z + j) n_y + l:
     D_fine = P D P^T with P the bins-to-cells linear interpolation (:func:`bin_map`), symmetric when D is;
     the bins' resolution converges with n_b at second order for a smooth correction."""
-    Z = row.rollers
+    Z = rollers
     D = np.zeros((2 * Z * ny, 2 * Z * ny))
     n, Pr = corr.roller_bins, bin_map(ny, corr.roller_bins)
     for j in range(Z):
@@ -225,7 +225,7 @@ def solve(row: ResolvedRow, grid: FineGrid, corr: CorrectionTables | None, radia
     psi = row.psi
     er = np.stack([np.cos(psi), np.sin(psi)], axis=1)
     drop = crown_drop(y, row.length, row.diameter) if row.crown == "iso" else np.zeros(ny)
-    Dfine = fine_corrections(row, corr, ny) if corr is not None else None
+    Dfine = fine_corrections(Z, corr, ny) if corr is not None else None
     contacts = []
     for c, name in enumerate(("inner", "outer")):
         dx = 2.0 * grid.half_width[c] / nx

@@ -41,10 +41,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..analytic.iso16281 import crown_drop
+from ..analytic.iso16281 import crown_drop, crown_drop_slice_means
 from ..errors import ConvergenceError
 from ..materials import Elastic
 from .bearing_condensed3d import SlicedRow, kinematics
+
 
 def _rule(n: int) -> tuple[np.ndarray, np.ndarray]:
     t, w = np.polynomial.legendre.leggauss(n)
@@ -80,22 +81,6 @@ def strip_influence(s: np.ndarray, b: np.ndarray, length: float, e_star: float) 
     out[near] = _integral(s[near], b[near], length, _NEAR)
     out[~near] = _integral(s[~near], b[~near], length, _FAR)
     return 2.0 / (np.pi**2 * e_star * b * length**2) * out
-
-
-def slice_mean_crown(length: float, diameter: float, slices: int) -> np.ndarray:
-    """The ISO/TS 16281 logarithmic crown drop (L_we <= 2.5 D_we: P = k D ln(1/(1 - s^2)), s = 2y/L, k = 0.00035;
-    TS eq. 42) averaged over each of ``slices`` equal slices (m): int ln(1 - s^2) ds = (1+s) ln(1+s) - (1-s) ln(1-s)
-    - 2 s, finite at the roller's ends where P itself is not."""
-    if length > 2.5 * diameter:
-        raise ValueError("the slice-mean crown is written for L_we <= 2.5 D_we (one logarithmic arc)")
-    edges = np.linspace(-1.0, 1.0, slices + 1)
-
-    def prim(s):
-        a, c = 1.0 + s, 1.0 - s
-        return np.where(a > 0, a * np.log(np.where(a > 0, a, 1.0)), 0.0) \
-            - np.where(c > 0, c * np.log(np.where(c > 0, c, 1.0)), 0.0) - 2.0 * s
-
-    return -0.00035 * diameter * np.diff(prim(edges)) / np.diff(edges)
 
 
 @dataclass
@@ -154,7 +139,7 @@ def solve(row: SlicedRow, r_inner: float, r_outer: float, material: Elastic, D: 
     Z, ns, L, Dw = row.rollers, row.slices, row.length, row.diameter
     G, c, dofs = kinematics(row)
     if row.crown == "iso":             # the slice-mean drop, as the approach is a slice mean (module doc)
-        c = c + np.tile(2.0 * (slice_mean_crown(L, Dw, ns) - crown_drop(row.x, L, Dw)), Z)
+        c = c + np.tile(2.0 * (crown_drop_slice_means(L, Dw, ns) - crown_drop(row.x, L, Dw)), Z)
     e_star = material.E / (2.0 * (1.0 - material.nu**2))
     h2 = L / ns
     y = row.x
@@ -165,7 +150,7 @@ def solve(row: SlicedRow, r_inner: float, r_outer: float, material: Elastic, D: 
     # start: every slice loaded with the mean roller load's width
     q = np.full(Z * ns, radial_load / (Z * ns))
     active = np.ones(Z * ns, dtype=bool)
-    total_it, b = 0, None
+    total_it = 0
     for wit in range(1, max_widths + 1):
         # an unloaded strip's width only matters once it loads: take 1e-3 of the largest (a start for the next pass)
         w = np.maximum(q, 1e-3 * q.max()) / h2

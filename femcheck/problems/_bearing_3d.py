@@ -152,7 +152,7 @@ def coupled_slices(scene, progress=None) -> ModelResult:
     ``numerics.strips_per_slice`` strips, the loads summed per slice."""
     from ..bem import bearing_condensed3d as bc
     from ..bem import bearing_strips as bs
-    from ..bem.bearing_resolved import bin_map
+    from ..bem.bearing_resolved import fine_corrections
 
     p = scene.params
     g = _geometry(p)
@@ -164,12 +164,10 @@ def coupled_slices(scene, progress=None) -> ModelResult:
         progress("coupled slices: finite-body corrections (roller and ring FE; cached across loads)")
     corr, dofs = _cached_corrections({k: v for k, v in sorted(p.items()) if k.startswith(_CORRECTION_KEYS)}, base)
     build = time.perf_counter() - t0
-    n, nr = corr.roller_bins, corr.ring_bins
-    R = corr.roller
-    # the slice load is the same at a roller's two contacts: its compliance is the sum of the four blocks
-    roller = R[:n, :n] + R[:n, n:] + R[n:, :n] + R[n:, n:]
-    Pr, Pg = bin_map(ns * m, n), np.kron(np.eye(Z), bin_map(ns * m, nr))
-    D = np.kron(np.eye(Z), Pr @ roller @ Pr.T) + Pg @ (corr.inner_ring + corr.outer_ring) @ Pg.T
+    # the slice load is the same at a roller's two contacts: its compliance is the sum of the contacts' four blocks
+    N = Z * ns * m
+    Df = fine_corrections(Z, corr, ns * m)
+    D = Df[:N, :N] + Df[:N, N:] + Df[N:, :N] + Df[N:, N:]
     row = bc.SlicedRow(Z, g["L"], g["D"], g["clearance"], ns * m, p["bearing.crown"], p["bearing.tilt"],
                        load_angle=p["load.angle"])
     if progress:
