@@ -40,6 +40,8 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version, is
 out_console = Console()
 SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786) to run the cases on; "
                   "default: local processes (needs the dist extra)")
+RUN_SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786): a reference built from "
+                      "independent FE levels (srb-rolling's fem_finite_body) solves them there side by side")
 if not out_console.is_terminal:       # piped or captured: do not wrap tables at 80 columns
     out_console = Console(width=220)
 err_console = Console(stderr=True)
@@ -215,13 +217,17 @@ def run_cmd(scene: str = typer.Argument(..., help="scene name or TOML path"),
             rebuild: bool = typer.Option(False, "--rebuild", help="ignore stored references and cached FEM results"),
             references: Optional[Path] = typer.Option(None, "--references", help="directory where the FE "
                                                       "references of your scene are kept (read and written); "
-                                                      "without it they stay in the cache")) -> None:
+                                                      "without it they stay in the cache"),
+            scheduler: Optional[str] = typer.Option(None, "--scheduler", help=RUN_SCHEDULER_HELP)) -> None:
     """Run one scene and compare its models."""
+    from .executor import check_scheduler, remote
     from .runner import run
 
     sc = _scene(scene, set_, models)
+    if scheduler:
+        check_scheduler(scheduler)
     t0 = time.perf_counter()
-    with progress_bar(None, sc.name) as advance:
+    with progress_bar(None, sc.name) as advance, remote(scheduler):
         # a built-in scene as shipped (no --set) is stored with the package's references; a user's scene only in
         # the directory the user names; one-off variations only go to the cache
         store = references is not None or (sc.builtin and not set_)

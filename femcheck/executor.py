@@ -3,7 +3,9 @@ dask.distributed cluster, with progress.
 
 Local processes are the default. ``scheduler`` (an address such as ``tcp://10.0.0.5:8786``) sends the cases
 to a running dask.distributed cluster instead, for a user who outgrows one machine; dask is the optional
-``dist`` extra, imported only then. Either way the results come back in the order of the cases and a case
+``dist`` extra, imported only then. A reference builder whose levels are independent solves (the FE tables of
+a finite-body correction) reads the cluster of the run it belongs to from :func:`current_scheduler`, set by
+:func:`remote` (``femcheck run --scheduler``); where it runs never enters a reference's key. Either way the results come back in the order of the cases and a case
 that raises makes the whole sweep raise (the case functions catch what they expect themselves).
 
 Stopping. Ctrl-C (SIGINT) or SIGTERM stops a local sweep at once: the workers ignore SIGINT (a terminal sends
@@ -14,6 +16,7 @@ worker also dies with its parent (Linux: PR_SET_PDEATHSIG), so even a parent kil
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import ctypes
 import os
 import signal
@@ -76,6 +79,31 @@ def _stop(pool: ProcessPoolExecutor) -> int:
             p.kill()
             p.join(timeout=1.0)
     return len(procs)
+
+
+_SCHEDULER: contextvars.ContextVar[str | None] = contextvars.ContextVar("femcheck_scheduler", default=None)
+
+
+@contextlib.contextmanager
+def remote(scheduler: str | None) -> Iterator[None]:
+    """Within the block, :func:`current_scheduler` is ``scheduler`` (None: everything runs here)."""
+    token = _SCHEDULER.set(scheduler or None)
+    try:
+        yield
+    finally:
+        _SCHEDULER.reset(token)
+
+
+def current_scheduler() -> str | None:
+    """The dask scheduler address of the run in progress (:func:`remote`), or None."""
+    return _SCHEDULER.get()
+
+
+def check_scheduler(scheduler: str) -> None:
+    """Connect once to ``scheduler`` (InputError naming ``--scheduler`` when dask is missing or nothing answers),
+    so that a run fails at its start, not after its local work."""
+    with _client(scheduler):
+        pass
 
 
 def default_workers() -> int:

@@ -28,7 +28,9 @@ Certified when every part is.
 
 Cost: the FE tables of the correction levels depend on the geometry, materials, load (the Hertz semi-axes scale
 the grids) and mesh settings only; levels above the coarsest are kept in the result cache
-(:mod:`femcheck.cache`), so a second friction coefficient reuses them. The coarsest level is always computed: it
+(:mod:`femcheck.cache`), so a second friction coefficient reuses them. They are independent FE solves: with a dask
+cluster (``femcheck run --scheduler``, :func:`femcheck.executor.current_scheduler`) the missing ones are solved
+there side by side first (:func:`prefetch`), each on one worker, and stored in this machine's cache. The coarsest level is always computed: it
 is what :mod:`femcheck.reference_check` re-solves, with its meshes recorded (:mod:`femcheck.replay`).
 """
 from __future__ import annotations
@@ -42,7 +44,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import cache, provenance
+from .. import cache, executor, provenance
 from ..cect import lattice_phase
 from ..cect.refinement import KALKER_ORDER
 from ..cect.roller_equilibrium import EquilibriumResult
@@ -101,13 +103,46 @@ def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
     return "srb-fb-tables-" + hashlib.sha256(blob.encode()).hexdigest()[:32]
 
 
+def _tables_path(p: dict[str, Any], k: int, far: int):
+    return cache.cache_dir() / f"{_tables_key(p, k, mesh_of(p, far))}.npz"
+
+
+def _tables_case(case: tuple[dict[str, Any], int, int]):
+    """The FE tables of correction level k on far-field level ``far`` (a picklable case for
+    :func:`femcheck.executor.map_cases`)."""
+    p, k, far = case
+    return fe.compliance(p, correction_grid(p, k)[3], mesh_of(p, far))
+
+
+def prefetch(p: dict[str, Any], levels: list[tuple[int, int]], scheduler: str, progress=None) -> list:
+    """Solve the FE tables of the correction ``levels`` [(k, far), ...] that the result cache lacks on the dask
+    cluster at ``scheduler``, all at once, and store them in the cache, where :func:`correction_level` finds
+    them. The coarsest (0, 0) is left out: it is always solved here (a stored reference records its meshes).
+    Returns the levels solved."""
+    todo = [(k, far) for k, far in levels if (k, far) != (0, 0) and not _tables_path(p, k, far).is_file()]
+    if not todo:
+        return []
+
+    def done(i: int, tables) -> None:
+        compliance_store.save(_tables_path(p, *todo[i]), tables)
+        if progress:
+            k, far = todo[i]
+            progress(f"fem_finite_body: FE correction level {k + 1}, far field {far + 1} solved on the cluster "
+                     f"({i + 1} of {len(todo)} levels sent)")
+
+    if progress:
+        progress(f"fem_finite_body: {len(todo)} FE correction levels sent to the dask cluster at {scheduler}")
+    executor.map_cases(_tables_case, [(dict(p), k, far) for k, far in todo], on_done=done, scheduler=scheduler)
+    return todo
+
+
 def correction_level(p: dict[str, Any], constants, k: int, far: int = 0, progress=None) -> cs.Correction:
     """The correction of level k on far-field mesh level ``far`` (FE tables computed, or read from the result
     cache except the coarsest (0, 0), whose meshes a stored reference records)."""
     nx, ns, _, grids = correction_grid(p, k)
     mesh = mesh_of(p, far)
     reuse = k > 0 or far > 0
-    path = cache.cache_dir() / f"{_tables_key(p, k, mesh)}.npz"
+    path = _tables_path(p, k, far)
     tables = compliance_store.load(path, grids) if reuse and path.is_file() else None
     if tables is None:
         if progress:
@@ -145,6 +180,8 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
     n_corr, n_grid, phases = (int(p["numerics.fb_correction_levels"]), int(p["numerics.fb_grid_levels"]),
                               int(p["numerics.fb_phases"]))
     n_far = int(p["numerics.fb_farfield_levels"])
+    if (scheduler := executor.current_scheduler()) is not None:
+        prefetch(p, [(k, 0) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler, progress)
 
     def on_scene_grid(k: int, far: int, prev: EquilibriumResult) -> tuple[cs.Correction, EquilibriumResult, dict]:
         corr = correction_level(p, constants, k, far, progress)
