@@ -40,8 +40,7 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version, is
 out_console = Console()
 SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786) to run the cases on; "
                   "default: local processes (needs the dist extra)")
-RUN_SCHEDULER_HELP = ("address of a dask.distributed scheduler (e.g. tcp://host:8786): a reference built from "
-                      "independent FE levels (srb-rolling's fem_finite_body) solves them there side by side")
+RUN_SCHEDULER_HELP = "dask.distributed scheduler (tcp://host:8786) for a reference's independent FE levels"
 if not out_console.is_terminal:       # piped or captured: do not wrap tables at 80 columns
     out_console = Console(width=220)
 err_console = Console(stderr=True)
