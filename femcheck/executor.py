@@ -3,10 +3,11 @@ dask.distributed cluster, with progress.
 
 Local processes are the default. ``scheduler`` (an address such as ``tcp://10.0.0.5:8786``) sends the cases
 to a running dask.distributed cluster instead, for a user who outgrows one machine; dask is the optional
-``dist`` extra, imported only then. A reference builder whose levels are independent solves (the FE tables of
-a finite-body correction) reads the cluster of the run it belongs to from :func:`current_scheduler`, set by
-:func:`remote` (``femcheck run --scheduler``); where it runs never enters a reference's key. Either way the results come back in the order of the cases and a case
-that raises makes the whole sweep raise (the case functions catch what they expect themselves).
+``dist`` extra, imported only then. Either way the results come back in the order of the cases and a case
+that raises makes the whole sweep raise (the case functions catch what they expect themselves). A reference
+builder whose levels are independent solves (the FE tables of a finite-body correction) reads the cluster of the
+run it belongs to from :func:`current_scheduler`, set by :func:`remote` (``femcheck run --scheduler``); where
+its levels run never enters a reference's key.
 
 Stopping. Ctrl-C (SIGINT) or SIGTERM stops a local sweep at once: the workers ignore SIGINT (a terminal sends
 it to the whole process group; only the parent acts on it), the parent cancels what has not started and

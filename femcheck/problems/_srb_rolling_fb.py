@@ -30,8 +30,9 @@ Cost: the FE tables of the correction levels depend on the geometry, materials, 
 the grids) and mesh settings only; levels above the coarsest are kept in the result cache
 (:mod:`femcheck.cache`), so a second friction coefficient reuses them. They are independent FE solves: with a dask
 cluster (``femcheck run --scheduler``, :func:`femcheck.executor.current_scheduler`) the missing ones are solved
-there side by side first (:func:`prefetch`), each on one worker, and stored in this machine's cache. The coarsest level is always computed: it
-is what :mod:`femcheck.reference_check` re-solves, with its meshes recorded (:mod:`femcheck.replay`).
+there side by side first (:func:`prefetch`), each on one worker, and stored in this machine's cache. The
+coarsest level is always computed here: it is what :mod:`femcheck.reference_check` re-solves, with its meshes
+recorded (:mod:`femcheck.replay`).
 """
 from __future__ import annotations
 
