@@ -26,6 +26,12 @@ def test_levels_have_exactly_geometric_cell_sizes():
         dx = [2.0 * v.domain[axis] / v.cells[axis] for v in lv]
         np.testing.assert_allclose(np.array(dx[:-1]) / np.array(dx[1:]), np.sqrt(2.0), rtol=1e-12)
     np.testing.assert_allclose([v.h for v in lv], [2.0 ** (-k / 2) for k in range(4)], rtol=1e-12)
+    # odd counts (a cell centred on the window's centre at every level), nearest to n0 r^k, same cell sizes
+    odd = lp.levels(CELLS0, DOMAIN0, np.sqrt(2.0), 4, odd=True)
+    assert [v.cells for v in odd] == [(41, 81), (57, 115), (83, 163), (115, 229)]
+    for a, b in zip(lv, odd):
+        np.testing.assert_allclose([2.0 * d / n for d, n in zip(a.domain, a.cells)],
+                                   [2.0 * d / n for d, n in zip(b.domain, b.cells)], rtol=1e-12)
 
 
 def test_phase_domains_move_the_edge_by_equal_fractions_of_a_cell():

@@ -44,11 +44,16 @@ STORED = [     # (scene, model, scene overrides the reference was solved with)
 # mode is exercised by the other FE references on the same meshing code.
 REPLAYED_ONLY = [
     pytest.param("srb-rolling-finite", "fem_finite_body", None, id="srb-rolling-finite", marks=pytest.mark.slow),
+    # the groove's finite-body reference: its coarsest correction (11 x 21 cells, 85k DOFs) on 41 x 81 cells
+    pytest.param("groove-rolling-finite", "fem_finite_body", None, id="groove-rolling-finite",
+                 marks=pytest.mark.slow),
 ]
 FRESH_ONLY: list = []
 SECOND_POINTS = [
     pytest.param("srb-rolling", "fem", {"friction.mu": 0.3}, id="srb-rolling-mu0.3"),
     pytest.param("srb-rolling-finite", "fem_finite_body", {"friction.mu": 0.3}, id="srb-rolling-finite-mu0.3"),
+    pytest.param("groove-rolling-finite", "fem_finite_body", {"geometry.groove_radius": 0.1005006},
+                 id="groove-rolling-finite-1.002"),
 ]
 # references with no meshes, re-solved whole: (scene, model, overrides, numbers compared at least)
 OTHERS = [

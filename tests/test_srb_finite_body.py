@@ -76,21 +76,3 @@ def test_offsets_carry_the_rolling_difference_of_the_correction(setup):
     kappa = np.broadcast_to(np.asarray(ci.speeds.kappa, dtype=float), (ci.grid.x.size, ci.grid.s.size))
     assert np.allclose(slip[0], -alpha * kappa * ci.speeds.reference, rtol=1e-9, atol=0)
     assert np.abs(slip[1]).max() == 0.0 and np.abs(gap).max() == 0.0
-
-
-def test_combined_certificate_adds_the_parts_steps_and_estimates():
-    """The finite-body reference's combined value is the contact grid's extrapolation plus the correction's and
-    the far field's extrapolation steps, its relative estimate the sum of the parts' absolute estimates over it;
-    certified only when every part is."""
-    from femcheck.problems._srb_rolling_fb import _combined
-    from femcheck.solvers.convergence import Certificate
-
-    grid = Certificate(5.0, 5.1, 1.0, 0.01, True, "grid")                # 0.05 absolute
-    corr = Certificate(4.9, 5.0, 2.0, 0.02, True, "corr")                # step -0.1, 0.098 absolute
-    far = Certificate(5.02, 5.0, 1.5, 0.005, True, "far")                # step +0.02, 0.0251 absolute
-    c = _combined({"contact grid": grid, "correction": corr, "far field": far})
-    assert c.value == pytest.approx(5.0 - 0.1 + 0.02, rel=1e-12)
-    assert c.error_estimate == pytest.approx((0.05 + 0.098 + 0.0251) / 4.92, rel=1e-12)
-    assert c.certified
-    far_not = Certificate(5.0, 5.0, None, 0.03, False, "far")
-    assert not _combined({"contact grid": grid, "correction": corr, "far field": far_not}).certified

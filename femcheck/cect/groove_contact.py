@@ -133,12 +133,20 @@ def _free_rolling(evaluate, guess: float, step: float, lo: float, hi: float, sca
 def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: CombinedConstants, speed: float,
                       spec: GridSpec = GridSpec(), influence: str = "halfspace", variable_dq: bool = True,
                       solver: str = "auto", tol: float = 1e-9,
-                      compliance_weights: tuple[float, float] = (1.0, 1.0)) -> GrooveSolution:
+                      compliance_weights: tuple[float, float] = (1.0, 1.0), extra_displacement=None,
+                      omega0: float | None = None) -> GrooveSolution:
     """Free rolling by the conformal exact theory on the developed groove grid (module docstring); the grid is
     enlarged (x 1.3 per touched side, up to 5 times) when the contact reaches its edge. ``compliance_weights``
     (body, ring) weight the two rolling speeds in V(s) (E8: 1/E* of each body, 0 for a rigid one). When the
     normal and tangential problems couple (dissimilar bodies, angle-corrected coefficients) every solve is a
-    Panagiotopoulos process under load control."""
+    Panagiotopoulos process under load control.
+
+    ``extra_displacement``: optional dg -> (u, u_down), a given elastic displacement (3, nx, ns) (m; local
+    components (x, s, n), u = u(body) - u(ring)) at the cell centres and one cell downstream (x + dx), added to
+    the one the contact's own tractions make through the half-space coefficients (a finite-body correction,
+    :mod:`femcheck.fem.groove_finite_body`): the gap opens by u_n and the slip gains the rolling difference
+    V_ref kappa (u_t - u_t') / dx (seed 000 eqs 17-21). ``omega0``: the body speed (rad/s) to start the free-rolling
+    search from (a previous solution's), instead of the full-slip estimate."""
     t0 = time.perf_counter()
     rx, ry = geom.hertz_radii
     h = elliptic_contact(load, rx, ry, constants.contact_modulus)
@@ -151,8 +159,13 @@ def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: Co
         dg = developed_grid(surface, dom[0] * h.semi_axis_x, dom[1] * h.semi_axis_y, spec.cells_x, spec.cells_s)
         wts = np.broadcast_to(dg.normals @ Z, (spec.cells_x, spec.cells_s))
 
-        def gap(d, dg=dg):
-            return undeformed_distance(dg, geom.body(d), ring)
+        u_extra = u_down = None
+        if extra_displacement is not None:
+            u_extra, u_down = extra_displacement(dg)
+
+        def gap(d, dg=dg, u_extra=u_extra):
+            h = undeformed_distance(dg, geom.body(d), ring)
+            return h if u_extra is None else h + u_extra[2]
 
         try:
             normal = solve_normal_conformal(dg.grid, gap, constants, load=load, load_weights=wts,
@@ -172,6 +185,10 @@ def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: Co
                 w = ring_part + omega * body_unit
                 slip = np.stack([w @ dg.surface.ex, np.einsum("ijk,jk->ij", w, dg.tangents)])
                 sp = rolling_speeds(dg, body, omega, ring, rate, compliance_weights=compliance_weights)
+                if u_extra is not None:
+                    kap = np.asarray(sp.kappa, dtype=float) if variable_dq else np.ones(1)
+                    kap = kap[None, :] if kap.ndim == 1 else kap
+                    slip = slip + sp.reference * kap[None] * (u_extra[:2] - u_down[:2]) / dg.grid.dx
                 r = solve_conformal(dg.grid, gap if coupled else normal.gap, constants, mu, slip,
                                     sp.reference, sp.kappa if variable_dq else None,
                                     load=load if coupled else None, load_weights=wts if coupled else None,
@@ -189,8 +206,9 @@ def solve_groove_cect(geom: GrooveRolling, load: float, mu: float, constants: Co
             reach = -(body_unit[i0] @ dg.surface.ex)
             loaded = normal.pressure.sum(axis=0)
             om = v_ring[loaded > 0] / reach[loaded > 0]
-            guess = float((loaded * v_ring).sum() / (loaded * reach).sum())
-            omega, (res, sp), evals, residual = _free_rolling(evaluate, guess, 0.5 * sat * speed / geom.rolling_radius,
+            guess = float((loaded * v_ring).sum() / (loaded * reach).sum()) if omega0 is None else float(omega0)
+            step = (0.5 if omega0 is None else 0.02) * sat * speed / geom.rolling_radius
+            omega, (res, sp), evals, residual = _free_rolling(evaluate, guess, step,
                                                               om.min() * (1 - 1e-3),
                                                               om.max() * (1 + 1e-3), mu * load, "conformal")
             break

@@ -40,14 +40,22 @@ class Level:
     h: float
 
 
-def levels(cells0: tuple[int, int], domain0: tuple[float, float], ratio: float, count: int) -> list[Level]:
-    """``count`` levels from ``cells0`` refining by ``ratio`` with exactly geometric cell sizes (eq 2)."""
+def levels(cells0: tuple[int, int], domain0: tuple[float, float], ratio: float, count: int,
+           odd: bool = False) -> list[Level]:
+    """``count`` levels from ``cells0`` refining by ``ratio`` with exactly geometric cell sizes (eq 2). ``odd``: the
+    counts rounded to the nearest odd number instead, so that a cell stays centred on the window's centre at
+    every level (quantities read at the centre cell, or a peak there, would otherwise jump by the half-cell offset
+    of an even count)."""
     if count < 1 or ratio <= 1.0:
         raise ValueError("levels needs count >= 1 and ratio > 1")
+
+    def rounded(x: float) -> int:
+        return 2 * int(np.floor(0.5 * (x - 1.0) + 0.5)) + 1 if odd else int(round(x))
+
     out = []
     for k in range(count):
         f = ratio ** k
-        n = tuple(int(round(c * f)) for c in cells0)
+        n = tuple(rounded(c * f) for c in cells0)
         out.append(Level(n, tuple(d * m / (c * f) for d, m, c in zip(domain0, n, cells0)), 1.0 / f))
     return out
 

@@ -178,14 +178,14 @@ def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_ex
     return sol, float(theta)
 
 
-def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
-    """One level: compliance, free rolling under load control; returns quantities, stats and fields."""
+def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None):
+    """The FE relative compliance of the crowned body and the ring segment (module docstring) on ``grid``, meshed
+    as FE level ``level`` (the section's grading divided by ``numerics.fem_ratio`` per level); raises InputError
+    when the body is longer than its mesh can follow."""
     g = setup(p)
     f = p["numerics.fem_ratio"] ** level
-    grid = _grid(g, p, level)
-    nx, ns = grid.x.size, grid.s.size
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
-    r0, rg, kap = g["r0"], g["rg"], g["kappa"]
+    r0, kap = g["r0"], g["kappa"]
     # the layered mesh maps the disk section of radius r0 onto the crown's smaller sections; where the crown radius
     # falls below MIN_CROWN_RATIO r0 its elements would be too flat (meshes.layered_bodies._crown_map)
     half_max = float(np.sqrt(g["Rc"] ** 2 - (g["Rc"] - (1.0 - MIN_CROWN_RATIO) * r0) ** 2))
@@ -199,11 +199,25 @@ def solve_level(p: dict[str, Any], level: int, progress=None) -> dict[str, Any]:
     G = tuple(float(v) for v in grid.centre)
     axis_point = None if kap == 0 else (0.0, 0.0, -r0 - 1.0 / kap)
     axis_dir = None if kap == 0 else (0.0, 1.0, 0.0)
-    ring = RingBody(G, rg, axis_point, axis_dir, g["m2"], p["numerics.fem_ring_length"] * b,
+    ring = RingBody(G, g["rg"], axis_point, axis_dir, g["m2"], p["numerics.fem_ring_length"] * b,
                     p["numerics.fem_ring_depth"] * b, p["numerics.fem_ring_width"] * b)
     mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, max(b, 2 * a), 1, 2)
+    return fe_compliance(roller, {"groove": ring}, {"groove": grid}, mesh, progress=progress)
+
+
+def solve_level(p: dict[str, Any], level: int, progress=None, comp=None) -> dict[str, Any]:
+    """One level: compliance (``comp``: already computed on this level's grid), free rolling under load control;
+    returns quantities, stats and fields."""
+    g = setup(p)
+    grid = _grid(g, p, level)
+    nx, ns = grid.x.size, grid.s.size
+    b = g["hertz"].semi_axis_y
+    r0, rg, kap = g["r0"], g["rg"], g["kappa"]
+    G = tuple(float(v) for v in grid.centre)
+    axis_point = None if kap == 0 else (0.0, 0.0, -r0 - 1.0 / kap)
+    axis_dir = None if kap == 0 else (0.0, 1.0, 0.0)
     t0 = time.perf_counter()
-    comp = fe_compliance(roller, {"groove": ring}, {"groove": grid}, mesh, progress=progress)
+    comp = compliance(p, grid, level, progress) if comp is None else comp
     t_comp = time.perf_counter() - t0
     V = float(p["kinematics.speed"])
     body = Crowned(np.zeros(3), np.array([0.0, 1.0, 0.0]), r0, g["Rc"])

@@ -12,7 +12,10 @@ extra gap and slip in every contact solve, a fixed point on the tractions). Thre
    lattice phases' dilated contact windows need), the FE mesh at ``numerics.fb_h_contact`` dx_k with one element
    layer per cell, near-field fill 2 cells; the equilibrium on the scene's contact grid
    (``numerics.conformal_cells_*``) for each. Certified by :func:`femcheck.solvers.convergence.certify` with the
-   correction's formal order 2 (``CORRECTION_ORDER``) and the re-meshing scatter as its floor.
+   correction's formal order 2 (``CORRECTION_ORDER``) and the re-meshing scatter as its floor: per quantity the
+   larger of the assumed 0.2 % and the spread measured over the coarsest level solved on
+   ``numerics.fb_scatter_meshes`` more meshes (the contact-line element size scaled by 1 %, 2 %, ...;
+   :func:`femcheck.solvers.split_certificate.remesh_floor`).
 2. **The far field** on the coarsest correction: the mesh grading and the largest element divided by 1.5 per
    level (``numerics.fb_farfield_levels``), the part of the FE mesh that family 1 does not refine; certified
    with the same floor.
@@ -21,10 +24,8 @@ extra gap and slip in every contact solve, a fixed point on the tractions). Thre
    the contact's leading edge (:mod:`femcheck.cect.lattice_phase`: a single window's lateral forces snap to its
    lattice by +-1.2 %). Certified by :func:`femcheck.solvers.convergence.certify_formal` at Kalker's first order.
 
-Combined value per quantity: the contact grid's value plus the other parts' extrapolation steps (value - finest);
-combined relative error estimate: the sum of the parts' (GCI bounds of separate discretisations; the cross term,
-the correction's effect changing with the contact grid, is carried by the grid levels at the finest correction).
-Certified when every part is.
+Combined value and estimate per quantity: :func:`femcheck.solvers.split_certificate.combine` (the contact grid's
+value plus the other parts' extrapolation steps; the sum of the parts' estimates). Certified when every part is.
 
 Cost: the FE tables of the correction levels depend on the geometry, materials, load (the Hertz semi-axes scale
 the grids) and mesh settings only; levels above the coarsest are kept in the result cache
@@ -55,7 +56,8 @@ from ..fem import srb_rolling as fe
 from ..fem.rolling_compliance import MeshSettings
 from ..fem.srb_finite_body import finite_body_equilibrium
 from ..result import ModelResult
-from ..solvers.convergence import Certificate, certify, certify_formal
+from ..solvers.convergence import certify, certify_formal
+from ..solvers.split_certificate import CORRECTION_ORDER, combine, remesh_floor
 from . import _srb_rolling_out as out
 
 CORRECTION_RATIO = 1.5          # correction grids: ns + 1 = 16, 24, 36, 54 cells along the roller (integers)
@@ -63,14 +65,6 @@ GRID_RATIO = math.sqrt(2.0)     # contact grids: 41 x 81, 58 x 115, 82 x 162, 11
 CORRECTION_HALF_X = 1.35        # correction window along x / a_H on the coarsest level (as the CECT's)
 CORRECTION_SPAN_S = 3.0         # along s: clipped to the roller length (fe.grids), so it spans the roller
 NEAR_FIELD = 2                  # cells of harmonic fill around the loaded cell (compliance_split.correction)
-# Formal order of the correction's approximations on its grid: the linear (tent) spreading of the contact
-# tractions onto the correction cells and the harmonic near-field fill are second order (the cubic splines
-# fourth); certify accepts observed orders within a factor 2 of it and extrapolates at the observed order.
-CORRECTION_ORDER = 2.0
-# Correction and far-field levels re-mesh the bodies: unstructured re-meshing scatters local FE quantities by
-# 0.05-0.15 % from level to level (hertz-point, docs/kinds/point_contact.md); changes below 0.2 % are that scatter,
-# no order can be observed in them (certify's floor), and the estimate is 3 x the larger of the last two changes.
-REMESH_SCATTER = 2e-3
 QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y", "tilt", "skew",
               "friction_power_inner", "friction_power_outer", "adhesion_fraction_inner", "adhesion_fraction_outer",
               "omega_m_deviation", "omega_R_deviation")
@@ -89,11 +83,13 @@ def correction_grid(p: dict[str, Any], k: int) -> tuple[int, int, float, dict]:
     return nx, ns, half_x, grids
 
 
-def mesh_of(p: dict[str, Any], far: int = 0) -> MeshSettings:
-    """FE mesh of the correction: ``fb_h_contact`` dx at the contact line, one layer per cell; far-field level
-    ``far`` divides the grading and the largest element (2 mm) by 1.5^far."""
+def mesh_of(p: dict[str, Any], far: int = 0, scale: float = 1.0) -> MeshSettings:
+    """FE mesh of the correction: ``fb_h_contact`` dx at the contact line (times ``scale``: the same level
+    re-meshed), one layer per cell; far-field level ``far`` divides the grading and the largest element (2 mm) by
+    1.5^far."""
     f = CORRECTION_RATIO ** far
-    return MeshSettings(p["numerics.fb_h_contact"], p["numerics.fem_grading"] / (math.sqrt(2.0) * f), 2e-3 / f, 1, 2)
+    return MeshSettings(p["numerics.fb_h_contact"] * scale, p["numerics.fem_grading"] / (math.sqrt(2.0) * f), 2e-3 / f,
+                        1, 2)
 
 
 def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
@@ -104,8 +100,8 @@ def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
     return "srb-fb-tables-" + hashlib.sha256(blob.encode()).hexdigest()[:32]
 
 
-def _tables_path(p: dict[str, Any], k: int, far: int):
-    return cache.cache_dir() / f"{_tables_key(p, k, mesh_of(p, far))}.npz"
+def _tables_path(p: dict[str, Any], k: int, far: int, mesh: MeshSettings | None = None):
+    return cache.cache_dir() / f"{_tables_key(p, k, mesh_of(p, far) if mesh is None else mesh)}.npz"
 
 
 def _tables_case(case: tuple[dict[str, Any], int, int]):
@@ -124,12 +120,15 @@ def prefetch(p: dict[str, Any], levels: list[tuple[int, int]], scheduler: str, p
     if not todo:
         return []
 
+    finished = []
+
     def done(i: int, tables) -> None:
         compliance_store.save(_tables_path(p, *todo[i]), tables)
+        finished.append(i)
         if progress:
             k, far = todo[i]
             progress(f"fem_finite_body: FE correction level {k + 1}, far field {far + 1} solved on the cluster "
-                     f"({i + 1} of {len(todo)} levels sent)")
+                     f"({len(finished)} of {len(todo)} levels done)")
 
     if progress:
         progress(f"fem_finite_body: {len(todo)} FE correction levels sent to the dask cluster at {scheduler}")
@@ -137,13 +136,15 @@ def prefetch(p: dict[str, Any], levels: list[tuple[int, int]], scheduler: str, p
     return todo
 
 
-def correction_level(p: dict[str, Any], constants, k: int, far: int = 0, progress=None) -> cs.Correction:
-    """The correction of level k on far-field mesh level ``far`` (FE tables computed, or read from the result
-    cache except the coarsest (0, 0), whose meshes a stored reference records)."""
+def correction_level(p: dict[str, Any], constants, k: int, far: int = 0, progress=None,
+                     scale: float = 1.0) -> cs.Correction:
+    """The correction of level k on far-field mesh level ``far`` (``scale``: the contact-line element size scaled,
+    the same level re-meshed) (FE tables computed, or read from the result cache except the coarsest
+    (0, 0, 1), whose meshes a stored reference records)."""
     nx, ns, _, grids = correction_grid(p, k)
-    mesh = mesh_of(p, far)
-    reuse = k > 0 or far > 0
-    path = _tables_path(p, k, far)
+    mesh = mesh_of(p, far, scale)
+    reuse = k > 0 or far > 0 or scale != 1.0
+    path = _tables_path(p, k, far, mesh)
     tables = compliance_store.load(path, grids) if reuse and path.is_file() else None
     if tables is None:
         if progress:
@@ -158,19 +159,6 @@ def correction_level(p: dict[str, Any], constants, k: int, far: int = 0, progres
 def _values(problem, r: EquilibriumResult) -> dict[str, float]:
     q = out.quantities(problem, r)
     return {k: float(q[k]) for k in QUANTITIES if q.get(k) is not None}
-
-
-def _combined(parts: dict[str, Certificate]) -> Certificate:
-    """Value: the contact grid's plus the other parts' extrapolation steps; relative error: the sum of the parts'
-    (each part's absolute estimate over the combined value)."""
-    grid = parts["contact grid"]
-    value = grid.value + sum(c.value - c.finest for name, c in parts.items() if name != "contact grid")
-    scale = abs(value) if value else 1.0
-    err = sum(c.error_estimate * abs(c.value) for c in parts.values()) / scale
-    note = "; ".join(f"{name}: {'certified' if c.certified else 'not certified'} ({c.note}; estimate "
-                     f"{c.error_estimate:.2%})" for name, c in parts.items())
-    return Certificate(float(value), grid.finest, grid.order, float(err), all(c.certified for c in parts.values()),
-                       note)
 
 
 def finite_body(p: dict[str, Any], problem, numerics, constants, start: EquilibriumResult,
@@ -207,6 +195,14 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
     for far in range(1, n_far):
         _, fprev, lv = on_scene_grid(0, far, fprev)
         far_levels.append(lv)
+    # the re-meshing scatter of each quantity, measured: the coarsest correction on fb_scatter_meshes more meshes of
+    # the same level (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
+    scatter_levels = []
+    for j in range(int(p["numerics.fb_scatter_meshes"])):
+        scale = 1.0 + 0.01 * (j + 1)
+        fb = finite_body_equilibrium(problem, numerics, correction_level(p, constants, 0, 0, progress, scale),
+                                     start)
+        scatter_levels.append({"h_contact_factor": scale, **_values(problem, fb.result)})
     grid_levels = []
     cells0 = (int(p["numerics.fb_cells_x"]), int(p["numerics.fb_cells_s"]))
     domain0 = (float(p["numerics.conformal_domain_x"]), float(p["numerics.conformal_domain_s"]))
@@ -226,20 +222,21 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
                             "domain_s": lv.domain[1], "phases": phases, **mean,
                             **{f"{k}_phase_spread": v for k, v in spread.items()}})
     names = [q for q in QUANTITIES if q in corr_levels[0]]
+    floors = {q: remesh_floor([corr_levels[0]] + scatter_levels, q) for q in names}
     c_corr = {q: certify([lv["h"] for lv in corr_levels], [lv[q] for lv in corr_levels], CORRECTION_ORDER,
-                         floor=REMESH_SCATTER) for q in names}
-    c_far = {q: certify([lv["h"] for lv in far_levels], [lv[q] for lv in far_levels], floor=REMESH_SCATTER)
+                         floor=floors[q]) for q in names}
+    c_far = {q: certify([lv["h"] for lv in far_levels], [lv[q] for lv in far_levels], floor=floors[q])
              for q in names}
     c_grid = {q: certify_formal([lv["h"] for lv in grid_levels], [lv[q] for lv in grid_levels], KALKER_ORDER)
               for q in names}
-    certs = {q: _combined({"contact grid": c_grid[q], "correction": c_corr[q], "far field": c_far[q]})
+    certs = {q: combine({"contact grid": c_grid[q], "correction": c_corr[q], "far field": c_far[q]})
              for q in names}
     stats = {"solver": "CECT roller equilibrium (half-space DC-FFT contacts) + FE finite-body correction "
                        "(P2, PARDISO/LU), fixed point on the tractions",
              "levels": corr_levels, "grid_levels": grid_levels, "level_quantities": names,
              "certificates": {q: c.as_dict() for q, c in certs.items()},
              "correction_certificates": {q: c.as_dict() for q, c in c_corr.items()},
-             "far_field_levels": far_levels,
+             "far_field_levels": far_levels, "scatter_levels": scatter_levels, "remesh_floors": floors,
              "far_field_certificates": {q: c.as_dict() for q, c in c_far.items()},
              "grid_certificates": {q: c.as_dict() for q, c in c_grid.items()},
              "halfspace_start": _values(problem, start), "time_s": time.perf_counter() - t0}

@@ -23,6 +23,9 @@ Models (:mod:`femcheck.cect.groove_contact`):
   factorisation per body) condensed onto the contact cells, steady rolling solved by the FE side's own semi-smooth
   Newton (:mod:`femcheck.solvers.coulomb3d`), free rolling and load control; levels refining grid and mesh
   together with certificates. A stored reference (``references/groove_rolling/``); elastic bodies only.
+- ``fem_finite_body``: the exact theory with finite-body influence coefficients (the developed half-space plus the
+  FE correction of the same bodies, :mod:`._groove_fb`) on the exact theory's fine grids, certified in two
+  parts (the correction's FE levels, the contact grid with lattice-phase means). A stored reference.
 
 Quantities (SI): ``approach`` (m), ``p_max`` (Pa), ``contact_half_length_s`` (m), ``angle_span`` (rad),
 ``adhesion_fraction``, ``creepage_x`` (free-rolling longitudinal creepage w_x/V at the nominal point, Kalker's
@@ -49,7 +52,7 @@ from ..geometry.groove import GrooveRolling
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
 
-MODEL_NAMES = ("cect", "planar", "fem")
+MODEL_NAMES = ("cect", "planar", "fem", "fem_finite_body")
 DESIGN_QUANTITIES = ("creepage_x", "friction_power", "p_max")     # the conformal contact's rolling loss first
 QUANTITIES = ("approach", "p_max", "contact_half_length_s", "angle_span", "adhesion_fraction", "creepage_x",
               "spin_moment", "friction_power")
@@ -90,6 +93,15 @@ SCHEMA: dict[str, Key] = {
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
     **FEM_SCHEMA,
+    "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (FE mesh and correction "
+                                         "grid refined together, as fem's levels)", lo=1, hi=4, lo_closed=True,
+                                         hi_closed=True),
+    "numerics.fb_grid_levels": Key("int", "-", "fem_finite_body: contact-grid levels from the scene's cells "
+                                   "(refined by sqrt 2)", lo=1, hi=5, lo_closed=True, hi_closed=True),
+    "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
+                              hi=8, lo_closed=True, hi_closed=True),
+    "numerics.fb_scatter_meshes": Key("int", "-", "fem_finite_body: extra meshes of the coarsest correction that "
+                                      "measure the re-meshing scatter", lo=0, hi=5, lo_closed=True, hi_closed=True),
 }
 DEFAULTS: dict[str, Any] = {
     "materials.body1.rigid": False,
@@ -106,13 +118,23 @@ DEFAULTS: dict[str, Any] = {
     "numerics.conformal_tol": 1e-9,
     "numerics.variable_dq": True,
     **FEM_DEFAULTS,
+    "numerics.fb_correction_levels": 3,
+    "numerics.fb_grid_levels": 4,
+    "numerics.fb_phases": 4,
+    "numerics.fb_scatter_meshes": 3,
 }
 REQUIRED = ("geometry.rolling_radius", "geometry.crown_radius", "geometry.groove_radius",
             "geometry.ring_curvature", "load.normal", "friction.mu", "kinematics.speed")
 # fem: a stored reference, keyed on every input it reads (the cect/planar numerics do not enter it)
 DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.",
                                                "numerics.fem_"), "reference": True,
-                                    "coarse": {"numerics.fem_levels": 1}}}
+                                    "coarse": {"numerics.fem_levels": 1}},
+                            # fem_finite_body: its coarse re-solve is the coarsest correction on the scene's grid
+                            "fem_finite_body": {"params": ("geometry.", "load.", "friction.", "materials.",
+                                                           "kinematics.", "numerics."), "reference": True,
+                                                "coarse": {"numerics.fb_correction_levels": 1,
+                                                           "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1,
+                                                           "numerics.fb_scatter_meshes": 0}}}
 
 
 def geometry(params: dict[str, Any]) -> GrooveRolling:
@@ -204,17 +226,20 @@ def _quantities(q: dict[str, float]) -> dict[str, float]:
     return out
 
 
+def _weights(p: dict[str, Any]) -> tuple[float, float]:
+    """E8: the rolling speeds of the two bodies weighted by their compliances (1 - nu^2)/E (0 when rigid)."""
+    return tuple(0.0 if p[f"materials.{b}.rigid"] else (1.0 - p[f"materials.{b}.nu"] ** 2) / p[f"materials.{b}.E"]
+                 for b in ("body1", "body2"))
+
+
 def cect(scene: Scene, progress=None) -> ModelResult:
     """Free rolling by the conformal exact theory (reference)."""
     p = scene.params
     if progress:
         progress("cect: conformal exact theory, free rolling")
-    # E8: the rolling speeds of the two bodies weighted by their compliances (1 - nu^2)/E (0 when rigid)
-    weights = tuple(0.0 if p[f"materials.{b}.rigid"] else (1.0 - p[f"materials.{b}.nu"] ** 2) / p[f"materials.{b}.E"]
-                    for b in ("body1", "body2"))
     sol = solve_groove_cect(geometry(p), p["load.normal"], p["friction.mu"], _constants(p), p["kinematics.speed"],
                             _spec(p), p["numerics.conformal_influence"], p["numerics.variable_dq"],
-                            p["numerics.conformal_solver"], p["numerics.conformal_tol"], weights)
+                            p["numerics.conformal_solver"], p["numerics.conformal_tol"], _weights(p))
     r, dg = sol.result, sol.grid
     stats = {**sol.stats, "n_elements": r.grid.nx * r.grid.ny,
              "solver": "conformal CECT: semi-smooth Newton ("
@@ -247,15 +272,36 @@ def fem(scene: Scene, progress=None) -> ModelResult:
     """Free rolling by the frictional FE reference (levels with certificates; :mod:`femcheck.fem.groove_rolling`)."""
     from ..fem import groove_rolling as fe
 
-    p = scene.params
-    for b in ("body1", "body2"):
-        if p[f"materials.{b}.rigid"]:
-            raise InputError(f"materials.{b}.rigid", "true is not allowed with the fem model (it meshes two elastic "
-                                                    "bodies); allowed: false")
+    _elastic_only(scene.params, "fem")
     return fe.model(scene, progress)
 
 
-MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "planar": planar, "fem": fem}
+def _elastic_only(p: dict[str, Any], model: str) -> None:
+    for b in ("body1", "body2"):
+        if p[f"materials.{b}.rigid"]:
+            raise InputError(f"materials.{b}.rigid", f"true is not allowed with the {model} model (it meshes two "
+                                                    "elastic bodies); allowed: false")
+
+
+def fem_finite_body(scene: Scene, progress=None) -> ModelResult:
+    """Free rolling with finite-body influence coefficients (half-space + FE correction) on fine contact grids,
+    certified in two parts: the correction's FE mesh and grid, and the contact grid with the lattice-phase mean
+    (:mod:`._groove_fb`)."""
+    from . import _groove_fb
+
+    p = scene.params
+    _elastic_only(p, "fem_finite_body")
+    if p["numerics.conformal_influence"] != "halfspace":
+        raise InputError("numerics.conformal_influence", f"{p['numerics.conformal_influence']} is not allowed with "
+                         "fem_finite_body (its correction is taken against the developed half-space); allowed: "
+                         "halfspace")
+    args = {"variable_dq": p["numerics.variable_dq"], "solver": p["numerics.conformal_solver"],
+            "tol": p["numerics.conformal_tol"], "compliance_weights": _weights(p)}
+    return _groove_fb.finite_body({**FEM_DEFAULTS, **p}, geometry(p), _constants(p), _spec(p), args, progress)
+
+
+MODELS: dict[str, Callable[..., ModelResult]] = {"cect": cect, "planar": planar, "fem": fem,
+                                                 "fem_finite_body": fem_finite_body}
 
 
 def load_of(scene: Scene) -> float:

@@ -130,6 +130,8 @@ SCHEMA: dict[str, Key] = {
                                    hi=6, lo_closed=True, hi_closed=True),
     "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
                               hi=16, lo_closed=True, hi_closed=True),
+    "numerics.fb_scatter_meshes": Key("int", "-", "fem_finite_body: extra meshes of the coarsest correction that "
+                                      "measure the re-meshing scatter", lo=0, hi=5, lo_closed=True, hi_closed=True),
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
 }
@@ -170,6 +172,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fb_cells_s": 81,
     "numerics.fb_grid_levels": 4,
     "numerics.fb_phases": 4,
+    "numerics.fb_scatter_meshes": 3,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal", "kinematics.inner_ring_speed")
@@ -183,7 +186,8 @@ DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "materials.", "load.
                                                 "reference": True,
                                                 "coarse": {"numerics.fb_correction_levels": 1,
                                                            "numerics.fb_farfield_levels": 1,
-                                                           "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1}}}
+                                                           "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1,
+                                                           "numerics.fb_scatter_meshes": 0}}}
 
 
 def bearing(p: dict[str, Any]) -> sb.BearingGeometry:
