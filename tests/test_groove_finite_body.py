@@ -16,6 +16,8 @@ from femcheck.fem.groove_finite_body import finite_body_rolling
 from femcheck.problems import groove_rolling as kind
 from femcheck.scene import load_scene
 
+pytestmark = pytest.mark.slow      # one FE level (85k DOFs) and three free-rolling solves: about 20 s
+
 
 @pytest.fixture(scope="module")
 def level0():
