@@ -47,6 +47,8 @@ REPLAYED_ONLY = [
     # the groove's finite-body reference: its coarsest correction (11 x 21 cells, 85k DOFs) on 41 x 81 cells
     pytest.param("groove-rolling-finite", "fem_finite_body", None, id="groove-rolling-finite",
                  marks=pytest.mark.slow),
+    # srb-normal's finite-body reference: srb-rolling-finite's coarsest correction under the normal contacts alone
+    pytest.param("srb-normal-finite", "fem_finite_body", None, id="srb-normal-finite", marks=pytest.mark.slow),
 ]
 FRESH_ONLY: list = []
 SECOND_POINTS = [

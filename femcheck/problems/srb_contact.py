@@ -11,7 +11,10 @@ the point-contact models (:mod:`femcheck.problems.point_contact`): ``analytic`` 
 geometry of Hertz and the BEM). ``fem_conformal`` is the conformal sub-model: the barrel-roller segment and
 each raceway segment meshed with their real curvatures, two-body node-to-surface contact
 (:mod:`femcheck.fem.srb_conformal`). ``calculix`` (selected with --models) solves the same conformal meshes
-in CalculiX (:mod:`femcheck.export.calculix_model`). Quantities carry the suffix ``_inner`` / ``_outer``.
+in CalculiX (:mod:`femcheck.export.calculix_model`). ``cect`` is the conformal half-space normal problem (the exact
+gap of the real surfaces on the developed grid, Kalker's developed half-space coefficients) and ``fem_finite_body``
+the same problem with finite-body influence coefficients (the whole roller and two ring segments by FE, certified
+in three parts: :mod:`femcheck.problems._srb_normal_fb`). Quantities carry the suffix ``_inner`` / ``_outer``.
 """
 from __future__ import annotations
 
@@ -21,10 +24,10 @@ from ..fem import srb_conformal
 from ..geometry.srb import radii
 from ..result import ModelResult
 from ..scene import Key, Scene, build_scene, check_body_pair, material_keys, model_keys, tolerance_key
-from . import point_contact
+from . import _srb_normal_fb, point_contact
 
 CONTACTS = ("inner", "outer")
-MODEL_NAMES = ("analytic", "bem", "fem", "fem_conformal", "calculix")
+MODEL_NAMES = ("analytic", "bem", "fem", "fem_conformal", "calculix", "cect", "fem_finite_body")
 
 SCHEMA: dict[str, Key] = {
     "geometry.roller_diameter": Key("float", "m", "roller nominal diameter D", lo=0.0),
@@ -39,6 +42,7 @@ SCHEMA: dict[str, Key] = {
     **model_keys(MODEL_NAMES),
     **{k: v for k, v in point_contact.SCHEMA.items() if k.startswith("numerics.") and "stress" not in k},
     **srb_conformal.FEM_SCHEMA,
+    **_srb_normal_fb.SCHEMA,
     "tolerances.*.*": tolerance_key("relative tolerance of model.quantity against the references"),
 }
 DEFAULTS: dict[str, Any] = {
@@ -48,13 +52,16 @@ DEFAULTS: dict[str, Any] = {
     "models.references": ["analytic"],
     **{k: v for k, v in point_contact.DEFAULTS.items() if k.startswith("numerics.") and "stress" not in k},
     **srb_conformal.FEM_DEFAULTS,
+    **_srb_normal_fb.DEFAULTS,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal")
 DEPENDS = {"fem": {"params": ("geometry.", "load.", "materials.", "numerics.fem_"),
                    "reference": True, "coarse": {"numerics.fem_levels": 1, "numerics.fem_finite_size_check": False}},
            "fem_conformal": {"params": ("geometry.", "load.", "materials.", "numerics.conformal_"),
-                             "reference": True, "coarse": {"numerics.conformal_levels": 1}}}
+                             "reference": True, "coarse": {"numerics.conformal_levels": 1}},
+           "fem_finite_body": {"params": ("geometry.", "load.", "materials.", "numerics.fb_", "numerics.cect_"),
+                               "reference": True, "coarse": _srb_normal_fb.COARSE}}
 
 
 def validate(params: dict[str, Any]) -> None:
@@ -75,7 +82,7 @@ def validate(params: dict[str, Any]) -> None:
 def _contact_params(params: dict[str, Any], contact: str) -> dict[str, Any]:
     rx, ry = radii(params)[contact]
     out = {k: v for k, v in params.items() if k.startswith(("numerics.", "load."))
-           and not k.startswith("numerics.conformal_")}
+           and not k.startswith(("numerics.conformal_", "numerics.cect_", "numerics.fb_"))}
     out.update({"geometry.Rx": float(rx), "geometry.Ry": float(ry), "geometry.profile": "paraboloid",
                 "outputs.subsurface_stress": False, "models.run": ["analytic"], "models.references": ["analytic"]})
     for body, src in (("body1", "roller"), ("body2", "ring")):
@@ -138,9 +145,20 @@ calculix = point_contact._by_name(
     "femcheck.export.calculix_model", False, "CalculiX (``ccx``) on the conformal sub-model's meshes, both raceway "
     "contacts, an independent FE (:mod:`femcheck.export.calculix_model`); skipped where ccx is not installed.")
 
+def cect(scene: Scene, progress=None) -> ModelResult:
+    """The conformal half-space normal contact of both raceways (:func:`femcheck.problems._srb_normal_fb.cect`)."""
+    return _srb_normal_fb.cect(scene.params, progress)
+
+
+def fem_finite_body(scene: Scene, progress=None) -> ModelResult:
+    """The finite-body normal contact of both raceways, certified in three parts
+    (:func:`femcheck.problems._srb_normal_fb.finite_body`)."""
+    return _srb_normal_fb.finite_body(scene.params, progress)
+
+
 MODELS: dict[str, Callable[..., ModelResult]] = {
-    **{n: _both(n) for n in MODEL_NAMES if n not in ("fem_conformal", "calculix")},
-    "fem_conformal": fem_conformal, "calculix": calculix}
+    **{n: _both(n) for n in ("analytic", "bem", "fem")},
+    "fem_conformal": fem_conformal, "calculix": calculix, "cect": cect, "fem_finite_body": fem_finite_body}
 
 
 def load_of(scene: Scene) -> float:
