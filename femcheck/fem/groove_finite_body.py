@@ -22,8 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..cect.groove_contact import GrooveSolution
-from ..errors import ConvergenceError
-from .compliance_split import Correction, coarse_field, field_at
+from .compliance_split import Correction, coarse_field, field_at, fixed_point
 
 NAME = "groove"
 
@@ -76,17 +75,7 @@ def finite_body_rolling(solve, corr: Correction, start: GrooveSolution | None = 
     t0 = time.perf_counter()
     sol = start if start is not None else solve(None, None)
     check_frames(corr, sol.grid)
-    last, history = None, []
-    for it in range(1, max_outer + 1):
-        coarse = coarse_field(corr, tractions(corr, sol))[NAME]
-        if last is not None:
-            change = float(np.abs(coarse - last).max()) / (float(np.abs(coarse).max()) or 1.0)
-            history.append(change)
-            if progress:
-                progress(f"finite-body free rolling: outer iteration {it - 1}, correction changed by {change:.2e}")
-            if change < tol:
-                return GrooveFiniteBody(sol, it - 1, history, time.perf_counter() - t0)
-        last = coarse
-        sol = solve(displacement_of(corr, coarse), sol.stats["body_angular_velocity"])
-    raise ConvergenceError("finite-body fixed point (correction's displacement)", max_outer,
-                           history[-1] if history else np.inf, tol)
+    fp = fixed_point(lambda u, s: solve(displacement_of(corr, u[NAME]), s.stats["body_angular_velocity"]),
+                     lambda s: {NAME: coarse_field(corr, tractions(corr, s))[NAME]}, sol, tol, max_outer,
+                     "finite-body free rolling", progress)
+    return GrooveFiniteBody(fp.solution, fp.iterations, fp.history, time.perf_counter() - t0)

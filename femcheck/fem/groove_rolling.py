@@ -178,6 +178,16 @@ def _free_rolling(comp, inp: ContactInput, dslip: np.ndarray, mu: float, load_ex
     return sol, float(theta)
 
 
+def _ring_axis(g: dict[str, Any], grid: ContactGrid) -> tuple[tuple, tuple | None, tuple | None]:
+    """The groove centre (the grid's profile centre), a point of the ring's axis and its direction (m, the body
+    frame; None for a straight rail, kappa = 0): the ring's axis lies 1/kappa beyond the body's axis."""
+    r0, kap = g["r0"], g["kappa"]
+    G = tuple(float(v) for v in grid.centre)
+    if kap == 0:
+        return G, None, None
+    return G, (0.0, 0.0, -r0 - 1.0 / kap), (0.0, 1.0, 0.0)
+
+
 def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None):
     """The FE relative compliance of the crowned body and the ring segment (module docstring) on ``grid``, meshed
     as FE level ``level`` (the section's grading divided by ``numerics.fem_ratio`` per level); raises InputError
@@ -185,7 +195,7 @@ def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None):
     g = setup(p)
     f = p["numerics.fem_ratio"] ** level
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
-    r0, kap = g["r0"], g["kappa"]
+    r0 = g["r0"]
     # the layered mesh maps the disk section of radius r0 onto the crown's smaller sections; where the crown radius
     # falls below MIN_CROWN_RATIO r0 its elements would be too flat (meshes.layered_bodies._crown_map)
     half_max = float(np.sqrt(g["Rc"] ** 2 - (g["Rc"] - (1.0 - MIN_CROWN_RATIO) * r0) ** 2))
@@ -196,9 +206,7 @@ def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None):
                          f"crowned body's radius is below {MIN_CROWN_RATIO:g} of {r0:g} m, where its mesh cannot "
                          f"follow{wide}; allowed: [2.2, {2.0 * half_max / b:.3g}] b_H")
     roller = RollerBody(r0, g["Rc"], p["numerics.fem_body_length"] * b, g["m1"])
-    G = tuple(float(v) for v in grid.centre)
-    axis_point = None if kap == 0 else (0.0, 0.0, -r0 - 1.0 / kap)
-    axis_dir = None if kap == 0 else (0.0, 1.0, 0.0)
+    G, axis_point, axis_dir = _ring_axis(g, grid)
     ring = RingBody(G, g["rg"], axis_point, axis_dir, g["m2"], p["numerics.fem_ring_length"] * b,
                     p["numerics.fem_ring_depth"] * b, p["numerics.fem_ring_width"] * b)
     mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, max(b, 2 * a), 1, 2)
@@ -213,9 +221,7 @@ def solve_level(p: dict[str, Any], level: int, progress=None, comp=None) -> dict
     nx, ns = grid.x.size, grid.s.size
     b = g["hertz"].semi_axis_y
     r0, rg, kap = g["r0"], g["rg"], g["kappa"]
-    G = tuple(float(v) for v in grid.centre)
-    axis_point = None if kap == 0 else (0.0, 0.0, -r0 - 1.0 / kap)
-    axis_dir = None if kap == 0 else (0.0, 1.0, 0.0)
+    G, axis_point, axis_dir = _ring_axis(g, grid)
     t0 = time.perf_counter()
     comp = compliance(p, grid, level, progress) if comp is None else comp
     t_comp = time.perf_counter() - t0

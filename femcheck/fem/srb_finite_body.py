@@ -18,7 +18,6 @@ ring by the approach), so the CECT's (x, s) are the correction's coordinates.
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -26,9 +25,8 @@ import numpy as np
 
 from ..cect.roller_equilibrium import EquilibriumResult, equilibrium, require_converged
 from ..cect.roller_state import Numerics, RollerProblem
-from ..errors import ConvergenceError
 from ..geometry import srb_bearing as sb
-from .compliance_split import Correction, coarse_field, field_at
+from .compliance_split import Correction, coarse_field, field_at, fixed_point
 
 
 @dataclass
@@ -78,22 +76,13 @@ def finite_body_equilibrium(problem: RollerProblem, num: Numerics, corr: Correct
     """The roller equilibrium with the finite-body correction (module docstring), from the half-space
     equilibrium ``start`` (solved if None). Raises ConvergenceError when the fixed point misses ``tol`` in
     ``max_outer`` iterations."""
-    t0 = time.perf_counter()
     if start is None:
         start = require_converged(equilibrium(problem, num))
-    r, last, history = start, None, []
-    for it in range(1, max_outer + 1):
-        coarse = coarse_field(corr, _sources(corr, r))
-        if last is not None:
-            scale = max(float(np.abs(u).max()) for u in coarse.values()) or 1.0
-            change = max(float(np.abs(coarse[c] - last[c]).max()) for c in coarse) / scale
-            history.append(change)
-            if progress:
-                progress(f"finite-body equilibrium: outer iteration {it - 1}, correction changed by {change:.2e}")
-            if change < tol:
-                return FiniteBodyResult(r, start, it - 1, history, time.perf_counter() - t0)
-        last = coarse
-        pr = replace(problem, offsets=offsets_of(corr, coarse))
-        r = require_converged(equilibrium(pr, num, x0=r.x, delta0=r.approach))
-    raise ConvergenceError("finite-body fixed point (correction's displacement)", max_outer,
-                           history[-1] if history else np.inf, tol)
+
+    def solve(u: dict[str, np.ndarray], r: EquilibriumResult) -> EquilibriumResult:
+        pr = replace(problem, offsets=offsets_of(corr, u))
+        return require_converged(equilibrium(pr, num, x0=r.x, delta0=r.approach))
+
+    fp = fixed_point(solve, lambda r: coarse_field(corr, _sources(corr, r)), start, tol, max_outer,
+                     "finite-body equilibrium", progress)
+    return FiniteBodyResult(fp.solution, start, fp.iterations, fp.history, fp.time_s)

@@ -42,10 +42,9 @@ import numpy as np
 from ..bem.halfspace import Grid
 from ..cect.conformal import solve_normal_conformal
 from ..cect.influence import CombinedConstants
-from ..errors import ConvergenceError
 from ..qoi import semi_axes
 from . import srb_rolling as fe
-from .compliance_split import Correction, coarse_field, field_at
+from .compliance_split import Correction, coarse_field, field_at, fixed_point
 from .contact_grid import ContactGrid
 from .rolling_geometry import Crowned, Grooved, gap
 
@@ -131,22 +130,16 @@ def solve_pair(setups: dict[str, ContactSetup], constants: CombinedConstants, co
         r = _solve_once(setups, constants, None, warm, pk_tol)
         r.time_s = time.perf_counter() - t0
         return r
-    r = warm if warm is not None else _solve_once(setups, constants, None, None, pk_tol)
-    last, history = None, []
-    for it in range(1, max_passes + 1):
-        coarse = _normal_field(corr, r)
-        if last is not None:
-            scale = max(float(np.abs(u).max()) for u in coarse.values()) or 1.0
-            change = max(float(np.abs(coarse[c] - last[c]).max()) for c in coarse) / scale
-            history.append(change)
-            if change < tol:
-                r.passes, r.history, r.time_s = it - 1, history, time.perf_counter() - t0
-                return r
-        last = coarse
-        extra = {c: field_at(corr, coarse[c], c, st.grid.x, st.grid.s)[2] for c, st in setups.items()}
-        r = _solve_once(setups, constants, extra, r, pk_tol)
-    raise ConvergenceError("finite-body normal fixed point (correction's displacement)", max_passes,
-                           history[-1] if history else np.inf, tol)
+    r0 = warm if warm is not None else _solve_once(setups, constants, None, None, pk_tol)
+
+    def solve(u: dict[str, np.ndarray], r: NormalPair) -> NormalPair:
+        extra = {c: field_at(corr, u[c], c, st.grid.x, st.grid.s)[2] for c, st in setups.items()}
+        return _solve_once(setups, constants, extra, r, pk_tol)
+
+    fp = fixed_point(solve, lambda r: _normal_field(corr, r), r0, tol, max_passes, "finite-body normal contact")
+    r = fp.solution
+    r.passes, r.history, r.time_s = fp.iterations, fp.history, time.perf_counter() - t0
+    return r
 
 
 def _normal_field(corr: Correction, r: NormalPair) -> dict[str, np.ndarray]:

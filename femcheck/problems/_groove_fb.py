@@ -46,7 +46,7 @@ from ..fem import groove_rolling as fe
 from ..fem.groove_finite_body import finite_body_rolling
 from ..result import ModelResult
 from ..solvers.convergence import certify
-from ..solvers.split_certificate import CORRECTION_ORDER, combine, grid_certificate, remesh_floor
+from ..solvers.split_certificate import CORRECTION_ORDER, combine, grid_certificate, remesh_floor, scatter_scales
 
 CORRECTION_HALF_X = 1.5     # a_H: the phases' dilated windows reach 1.42 a_H at 41 cells
 GRID_RATIO = math.sqrt(2.0)
@@ -105,10 +105,10 @@ def finite_body(p: dict[str, Any], geom, constants, spec: GridSpec, solver_args:
     # the re-meshing scatter of each quantity, measured: the coarsest correction on fb_scatter_meshes more meshes of
     # the same level (the section's element size at the contact line scaled by 1 %, 2 %, ...: every element moves)
     scatter_levels = []
-    for j in range(int(p["numerics.fb_scatter_meshes"])):
-        pj = {**p, "numerics.fem_h_contact": float(p["numerics.fem_h_contact"]) * (1.0 + 0.01 * (j + 1))}
+    for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
+        pj = {**p, "numerics.fem_h_contact": float(p["numerics.fem_h_contact"]) * scale}
         fb = finite_body_rolling(solver(spec), correction_level(pj, constants, 0, progress), start)
-        scatter_levels.append({"h_contact_factor": 1.0 + 0.01 * (j + 1), **_values(fb.solution)})
+        scatter_levels.append({"h_contact_factor": scale, **_values(fb.solution)})
     grid_levels = []
     # odd counts: the creepage is read at the centre cell and p_max sits there (an even count moved both by 0.04 %)
     for lv in lattice_phase.levels((spec.cells_x, spec.cells_s), (spec.domain_x, spec.domain_s), GRID_RATIO, n_grid,

@@ -38,7 +38,8 @@ from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
 from ..solvers.convergence import certify
-from ..solvers.split_certificate import CORRECTION_ORDER, combine, grid_certificate, remesh_floor
+from ..solvers.split_certificate import (CORRECTION_ORDER, SCATTER_MESHES_KEY, combine, grid_certificate, remesh_floor,
+                                         scatter_scales)
 from . import _srb_rolling_fb as rfb
 
 GRID_RATIO = math.sqrt(2.0)
@@ -74,8 +75,7 @@ SCHEMA: dict[str, Key] = {
                                    lo_closed=True, hi_closed=True),
     "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
                               hi=8, lo_closed=True, hi_closed=True),
-    "numerics.fb_scatter_meshes": Key("int", "-", "fem_finite_body: extra meshes of the coarsest correction that "
-                                      "measure the re-meshing scatter", lo=0, hi=5, lo_closed=True, hi_closed=True),
+    "numerics.fb_scatter_meshes": SCATTER_MESHES_KEY,
 }
 DEFAULTS: dict[str, Any] = {
     "numerics.cect_cells_x": 61,
@@ -165,8 +165,7 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
         _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, far, progress), start)
         far_levels.append({"level": 0, "far_field": far, "h": 1.0 / rfb.CORRECTION_RATIO ** far, **q})
     scatter_levels = []
-    for j in range(int(p["numerics.fb_scatter_meshes"])):
-        scale = 1.0 + 0.01 * (j + 1)
+    for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
         _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, 0, progress, scale), start)
         scatter_levels.append({"h_contact_factor": scale, **q})
     grid_levels, prev = [], warm

@@ -22,7 +22,8 @@ extra gap and slip in every contact solve, a fixed point on the tractions). Thre
 3. **The contact grid** at the finest correction: levels from ``numerics.fb_cells_x`` x ``fb_cells_s`` refining
    by sqrt 2 with exactly geometric cell sizes, each level the mean over ``numerics.fb_phases`` lattice phases of
    the contact's leading edge (:mod:`femcheck.cect.lattice_phase`: a single window's lateral forces snap to its
-   lattice by +-1.2 %). Certified by :func:`femcheck.solvers.convergence.certify_formal` at Kalker's first order.
+   lattice by +-1.2 %). Certified by :func:`femcheck.solvers.split_certificate.grid_certificate` at Kalker's first
+   order (changes between levels below the levels' own phase spread count as converged).
 
 Combined value and estimate per quantity: :func:`femcheck.solvers.split_certificate.combine` (the contact grid's
 value plus the other parts' extrapolation steps; the sum of the parts' estimates). Certified when every part is.
@@ -44,8 +45,6 @@ import time
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
 from .. import cache, executor, provenance
 from ..cect import lattice_phase
 from ..cect.refinement import KALKER_ORDER
@@ -56,8 +55,8 @@ from ..fem import srb_rolling as fe
 from ..fem.rolling_compliance import MeshSettings
 from ..fem.srb_finite_body import finite_body_equilibrium
 from ..result import ModelResult
-from ..solvers.convergence import certify, certify_formal
-from ..solvers.split_certificate import CORRECTION_ORDER, combine, remesh_floor
+from ..solvers.convergence import certify
+from ..solvers.split_certificate import CORRECTION_ORDER, combine, grid_certificate, remesh_floor, scatter_scales
 from . import _srb_rolling_out as out
 
 CORRECTION_RATIO = 1.5          # correction grids: ns + 1 = 16, 24, 36, 54 cells along the roller (integers)
@@ -198,8 +197,7 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
     # the re-meshing scatter of each quantity, measured: the coarsest correction on fb_scatter_meshes more meshes of
     # the same level (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
     scatter_levels = []
-    for j in range(int(p["numerics.fb_scatter_meshes"])):
-        scale = 1.0 + 0.01 * (j + 1)
+    for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
         fb = finite_body_equilibrium(problem, numerics, correction_level(p, constants, 0, 0, progress, scale),
                                      start)
         scatter_levels.append({"h_contact_factor": scale, **_values(problem, fb.result)})
@@ -227,8 +225,8 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
                          floor=floors[q]) for q in names}
     c_far = {q: certify([lv["h"] for lv in far_levels], [lv[q] for lv in far_levels], floor=floors[q])
              for q in names}
-    c_grid = {q: certify_formal([lv["h"] for lv in grid_levels], [lv[q] for lv in grid_levels], KALKER_ORDER)
-              for q in names}
+    c_grid = {q: grid_certificate([lv["h"] for lv in grid_levels], [lv[q] for lv in grid_levels],
+                                  [lv[f"{q}_phase_spread"] for lv in grid_levels], KALKER_ORDER) for q in names}
     certs = {q: combine({"contact grid": c_grid[q], "correction": c_corr[q], "far field": c_far[q]})
              for q in names}
     stats = {"solver": "CECT roller equilibrium (half-space DC-FFT contacts) + FE finite-body correction "

@@ -51,6 +51,7 @@ from ..fem.groove_rolling import FEM_DEFAULTS, FEM_SCHEMA
 from ..geometry.groove import GrooveRolling
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
+from ..solvers.split_certificate import SCATTER_MESHES_KEY
 
 MODEL_NAMES = ("cect", "planar", "fem", "fem_finite_body")
 DESIGN_QUANTITIES = ("creepage_x", "friction_power", "p_max")     # the conformal contact's rolling loss first
@@ -100,8 +101,7 @@ SCHEMA: dict[str, Key] = {
                                    "(refined by sqrt 2)", lo=1, hi=5, lo_closed=True, hi_closed=True),
     "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
                               hi=8, lo_closed=True, hi_closed=True),
-    "numerics.fb_scatter_meshes": Key("int", "-", "fem_finite_body: extra meshes of the coarsest correction that "
-                                      "measure the re-meshing scatter", lo=0, hi=5, lo_closed=True, hi_closed=True),
+    "numerics.fb_scatter_meshes": SCATTER_MESHES_KEY,
 }
 DEFAULTS: dict[str, Any] = {
     "materials.body1.rigid": False,

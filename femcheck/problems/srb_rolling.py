@@ -48,6 +48,7 @@ from ..errors import InputError
 from ..geometry import srb_bearing as sb
 from ..result import ModelResult
 from ..scene import Key, Scene, elastic, material_keys, model_keys, tolerance_key
+from ..solvers.split_certificate import SCATTER_MESHES_KEY
 from . import _srb_rolling_out as out
 
 MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem", "fem_finite_body", "paper_fem")
@@ -130,8 +131,7 @@ SCHEMA: dict[str, Key] = {
                                    hi=6, lo_closed=True, hi_closed=True),
     "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
                               hi=16, lo_closed=True, hi_closed=True),
-    "numerics.fb_scatter_meshes": Key("int", "-", "fem_finite_body: extra meshes of the coarsest correction that "
-                                      "measure the re-meshing scatter", lo=0, hi=5, lo_closed=True, hi_closed=True),
+    "numerics.fb_scatter_meshes": SCATTER_MESHES_KEY,
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
 }
