@@ -13,6 +13,8 @@ from femcheck.problems import _srb_rolling_out as out
 from femcheck.problems import srb_rolling as kind
 from femcheck.scene import load_scene
 
+from _corrections import correction_with
+
 K_UNIFORM = 2.0e-12          # m/N: a uniform normal compliance, 1/4 of the roller's diametral one (Hertz 5.5 kN)
 
 
@@ -25,16 +27,6 @@ def setup():
     return p, pr, num, start, grids
 
 
-def correction_with(grids, kernel):
-    kernels, lags = {}, {}
-    for r, gr in grids.items():
-        for s, gs in grids.items():
-            lags[(r, s)] = float(gr.x[0] - gs.x[-1]) + gr.dx * np.arange(gr.nx + gs.nx)
-            kernels[(r, s)] = np.zeros((3, 3, gr.nx + gs.nx, gr.ns, gs.ns))
-    kernel(kernels, lags)
-    return cs.Correction(dict(grids), kernels, lags, {})
-
-
 def test_uniform_normal_correction_only_moves_the_approach(setup):
     """A correction that opens the inner gap uniformly by K N (K m/N per unit force anywhere on the inner contact)
     is a rigid shift of the inner ring up to the turn of the normals along the profile (theta = s/r_g <= 0.085
@@ -44,7 +36,7 @@ def test_uniform_normal_correction_only_moves_the_approach(setup):
     3.6e-3; the skew, held by a yaw stiffness of ~8 N m/rad, moves by 0.6 % and is not asserted)."""
     p, pr, num, start, grids = setup
 
-    def k(kernels, lags):
+    def k(kernels, lags, grids):
         kernels[("inner", "inner")][2, 2] = K_UNIFORM
 
     fb = finite_body_equilibrium(pr, num, correction_with(grids, k), start, tol=1e-8)

@@ -6,12 +6,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from femcheck.fem import compliance_split as cs
 from femcheck.fem import srb_normal_finite_body as nb
 from femcheck.fem import srb_rolling as fe
 from femcheck.geometry.srb import radii
 from femcheck.problems import _srb_normal_fb as drv
 from femcheck.scene import load_scene
+
+from _corrections import correction_with
 
 K_UNIFORM = 2.0e-12          # m/N: a uniform normal compliance, 1/4 of the roller's diametral one (Hertz 5.5 kN)
 L_TILT = 0.01                # m
@@ -23,16 +24,6 @@ def case():
     st = nb.setup(p, 41, 81, 1.35, 1.25)
     c = drv.constants_of(p)
     return p, st, c, nb.solve_pair(st, c)
-
-
-def correction_with(grids, kernel):
-    kernels, lags = {}, {}
-    for r, gr in grids.items():
-        for s, gs in grids.items():
-            lags[(r, s)] = float(gr.x[0] - gs.x[-1]) + gr.dx * np.arange(gr.nx + gs.nx)
-            kernels[(r, s)] = np.zeros((3, 3, gr.nx + gs.nx, gr.ns, gs.ns))
-    kernel(kernels, lags, grids)
-    return cs.Correction(dict(grids), kernels, lags, {})
 
 
 def centroid_s(st, r, c):
