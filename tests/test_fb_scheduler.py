@@ -11,7 +11,7 @@ from femcheck.fem import compliance_store
 from femcheck.problems import _srb_rolling_fb as fb
 from femcheck.scene import load_scene
 
-# a small, coarse correction family: level 1 is 11 x 11 cells over the roller, 66k DOFs (9 s here)
+# a small, coarse correction family: level 1 is 11 x 11 cells over the roller
 CHEAP = {"numerics.fb_correction_cells_x": 5, "numerics.fb_correction_cells_s": 7, "numerics.fb_h_contact": 1.4,
          "numerics.fem_grading": 1.0}
 
@@ -31,11 +31,11 @@ def test_correction_levels_solved_on_a_local_cluster_equal_local_ones(tmp_path, 
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) \
             as cluster:
         # the coarsest level is always solved here (a stored reference records its meshes): not sent
-        assert fb.prefetch(p, [(0, 0), (1, 0)], cluster.scheduler_address) == [(1, 0)]
-        assert fb._tables_path(p, 1, 0).is_file()
-        assert fb.prefetch(p, [(0, 0), (1, 0)], cluster.scheduler_address) == []     # cached: nothing sent
-    remote = compliance_store.load(fb._tables_path(p, 1, 0), fb.correction_grid(p, 1)[3])
-    local = fb._tables_case((p, 1, 0))
+        assert fb.prefetch(p, [(0, None), (1, None)], cluster.scheduler_address) == [(1, None)]
+        assert fb._tables_path(p, 1, None).is_file()
+        assert fb.prefetch(p, [(0, None), (1, None)], cluster.scheduler_address) == []     # cached: nothing sent
+    remote = compliance_store.load(fb._tables_path(p, 1, None), fb.correction_grid(p, 1)[3])
+    local = fb._tables_case((p, 1, None))
     assert set(remote.tables) == set(local.tables) == {(a, b) for a in ("inner", "outer") for b in ("inner", "outer")}
     for key, T in local.tables.items():
         scale = np.abs(T).max()

@@ -240,21 +240,25 @@ def body_compliance(body: BodyModel, grids: dict[str, ContactGrid], backend: str
     times["transfer_s"] = time.perf_counter() - t0
 
     tables = {k: np.zeros((3, 3, v.n_lags, grids[k[0]].ns, grids[k[1]].ns)) for k, v in recv.items()}
-    doflocs = solid.basis.doflocs
-    n = solid.n_dofs
-    factor_stats = []
-    M = _mass(body.mesh, body.order) if body.free else None
+    K, doflocs, n = solid.K, solid.basis.doflocs, solid.n_dofs
+    free_of = {}
     for cls in CLASSES:
-        t0 = time.perf_counter()
         fixed = [_face_dofs(solid.basis, body.mesh, f, (0, 1, 2)) for f in body.clamped]
         fixed.append(_face_dofs(solid.basis, body.mesh, "x0", (0,) if cls == "symmetric" else (1, 2)))
         if body.free:
             fixed.append(_point_supports(body.mesh, cls))
-        fixed = np.unique(np.concatenate(fixed))
-        free = np.setdiff1d(np.arange(n), fixed)
+        free_of[cls] = np.setdiff1d(np.arange(n), np.unique(np.concatenate(fixed)))
+    # the basis holds every element's shape functions and gradients at the quadrature points (about 1.7 GB on the
+    # finest SRB roller correction): released before the factorisations, which set the peak memory
+    del solid
+    factor_stats = []
+    M = _mass(body.mesh, body.order) if body.free else None
+    for cls in CLASSES:
+        t0 = time.perf_counter()
+        free = free_of[cls]
         if progress:
             progress(f"{body.name}: factorising the {cls} half ({free.size} DOFs)")
-        fac = SPDFactor(solid.K[free][:, free], backend)
+        fac = SPDFactor(K[free][:, free], backend)
         dirs = (0,) if cls == "antisymmetric" else (1, 2)
         if body.free:
             B = _rigid_modes(doflocs, cls)

@@ -4,12 +4,15 @@ developed half-space plus the FE correction of the whole roller and two ring seg
 :mod:`femcheck.fem.srb_normal_finite_body`), certified in the three parts of srb-rolling's finite-body reference
 (:mod:`femcheck.problems._srb_rolling_fb`, whose correction levels it solves: the same bodies, grids and meshes):
 
-1. **The correction** (FE mesh and correction grid refined together by 1.5, ``numerics.fb_correction_levels``) on
-   the scene's contact grid (``numerics.cect_cells_*``, as the cect model's). Certified by :func:`femcheck.solvers.convergence.certify` at
-   the correction's formal order with the measured re-meshing floor (the coarsest correction on
-   ``numerics.fb_scatter_meshes`` more meshes, :func:`femcheck.solvers.split_certificate.remesh_floor`).
+1. **The correction** (FE mesh and correction grid refined together by 1.5, ``numerics.fb_correction_levels``;
+   two element layers per cell and a one-cell near-field fill) on the scene's contact grid
+   (``numerics.cect_cells_*``, as the cect model's). Certified by
+   :func:`femcheck.solvers.finite_body_certificate.correction_certificate` at the correction's formal order with
+   the measured re-meshing floor (the far field's first mesh on ``numerics.fb_scatter_meshes`` more meshes,
+   :func:`femcheck.solvers.split_certificate.remesh_floor`).
 2. **The far field** (grading and largest element / 1.5 per level, ``numerics.fb_farfield_levels``) on the
-   coarsest correction, same grid and floor.
+   coarsest correction grid with a coarser near field (:func:`femcheck.problems._srb_rolling_fb.mesh_of`), same
+   grid and floor.
 3. **The contact grid** at the finest correction: ``numerics.fb_grid_levels`` levels from ``numerics.fb_cells_x``
    x ``fb_cells_s`` refining by sqrt 2 (odd counts: a cell stays on the contact's centre, where p_max is read),
    each the mean over ``numerics.fb_phases`` lattice phases of the window along x and s together (the edges
@@ -37,9 +40,8 @@ from ..fem import srb_rolling as fe
 from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
-from ..solvers.convergence import certify
-from ..solvers.split_certificate import (CORRECTION_ORDER, SCATTER_MESHES_KEY, combine, grid_certificate, remesh_floor,
-                                         scatter_scales)
+from ..solvers.finite_body_certificate import certify_parts
+from ..solvers.split_certificate import SCATTER_MESHES_KEY, scatter_scales
 from . import _srb_rolling_fb as rfb
 
 GRID_RATIO = math.sqrt(2.0)
@@ -62,7 +64,7 @@ SCHEMA: dict[str, Key] = {
     "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (ratio 1.5)", lo=1, hi=5,
                                          lo_closed=True, hi_closed=True),
     "numerics.fb_farfield_levels": Key("int", "-", "fem_finite_body: far-field levels on the coarsest correction",
-                                       lo=1, hi=4, lo_closed=True, hi_closed=True),
+                                       lo=0, hi=4, lo_closed=True, hi_closed=True),
     "numerics.fb_h_contact": Key("float", "dx", "fem_finite_body: FE element size at the contact line / the "
                                  "correction cell", lo=0.3, hi=2.0, lo_closed=True, hi_closed=True),
     "numerics.fb_grading": Key("float", "-", "fem_finite_body: FE mesh grading away from the contacts", lo=0.05,
@@ -85,9 +87,9 @@ DEFAULTS: dict[str, Any] = {
     # the srb-rolling finite-body reference's correction family (its defaults: the same FE tables)
     "numerics.fb_correction_cells_x": 9,
     "numerics.fb_correction_cells_s": 15,
-    "numerics.fb_correction_levels": 4,
+    "numerics.fb_correction_levels": 3,
     "numerics.fb_farfield_levels": 3,
-    "numerics.fb_h_contact": 0.7,
+    "numerics.fb_h_contact": 0.35,
     "numerics.fb_grading": 0.4,
     "numerics.fb_cells_x": 41,
     "numerics.fb_cells_s": 81,
@@ -95,7 +97,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fb_phases": 4,
     "numerics.fb_scatter_meshes": 3,
 }
-COARSE = {"numerics.fb_correction_levels": 1, "numerics.fb_farfield_levels": 1, "numerics.fb_grid_levels": 1,
+COARSE = {"numerics.fb_correction_levels": 1, "numerics.fb_farfield_levels": 0, "numerics.fb_grid_levels": 1,
           "numerics.fb_phases": 1, "numerics.fb_scatter_meshes": 0}
 
 
@@ -137,7 +139,8 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
     n_corr, n_far, n_grid, phases = (int(p[f"numerics.fb_{k}"]) for k in
                                      ("correction_levels", "farfield_levels", "grid_levels", "phases"))
     if (scheduler := executor.current_scheduler()) is not None:
-        rfb.prefetch(pf, [(k, 0) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler, progress)
+        rfb.prefetch(pf, [(k, None) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler,
+                     progress)
     cells0 = (int(p["numerics.fb_cells_x"]), int(p["numerics.fb_cells_s"]))
     domain0 = (float(p["numerics.cect_domain_x"]), float(p["numerics.cect_domain_s"]))
     # the correction's and the far field's levels on the scene's grid: level 0 is what reference_check re-solves
@@ -150,18 +153,18 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
 
     corr_levels, warm, corr = [], start, None
     for k in range(n_corr):
-        corr = rfb.correction_level(pf, constants, k, 0, progress)
+        corr = rfb.correction_level(pf, constants, k, None, progress)
         warm, q = on_scene_grid(corr, warm)
         nx, ns, half_x, _ = rfb.correction_grid(pf, k)
         st = corr.stats["fe"]
-        corr_levels.append({"level": k, "far_field": 0, "nx": nx, "ns": ns, "half_x": half_x,
+        corr_levels.append({"level": k, "far_field": None, "nx": nx, "ns": ns, "half_x": half_x,
                             "h": 1.0 / rfb.CORRECTION_RATIO ** k, "n_dofs": st.get("n_dofs"),
                             "fe_time_s": st.get("total_s"), **q})
         if progress:
             progress(f"fem_finite_body: correction level {k + 1}: semi_axis_y inner {q['semi_axis_y_inner']:.6e} m")
     finest_corr = corr
-    far_levels = [corr_levels[0]]
-    for far in range(1, n_far):
+    far_levels = []
+    for far in range(n_far):
         _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, far, progress), start)
         far_levels.append({"level": 0, "far_field": far, "h": 1.0 / rfb.CORRECTION_RATIO ** far, **q})
     scatter_levels = []
@@ -183,25 +186,14 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
         grid_levels.append({"nx": lv.cells[0], "ns": lv.cells[1], "h": lv.h, "domain_x": lv.domain[0],
                             "domain_s": lv.domain[1], "phases": phases, **mean,
                             **{f"{k}_phase_spread": v for k, v in spread.items()}})
-    floors = {q: remesh_floor([corr_levels[0]] + scatter_levels, q) for q in QUANTITIES}
-    c_corr = {q: certify([lv["h"] for lv in corr_levels], [lv[q] for lv in corr_levels], CORRECTION_ORDER,
-                         floor=floors[q]) for q in QUANTITIES}
-    c_far = {q: certify([lv["h"] for lv in far_levels], [lv[q] for lv in far_levels], floor=floors[q])
-             for q in QUANTITIES}
-    c_grid = {q: grid_certificate([lv["h"] for lv in grid_levels], [lv[q] for lv in grid_levels],
-                                  [lv[f"{q}_phase_spread"] for lv in grid_levels], KALKER_ORDER) for q in QUANTITIES}
-    certs = {q: combine({"contact grid": c_grid[q], "correction": c_corr[q], "far field": c_far[q]})
-             for q in QUANTITIES}
+    parts = certify_parts(QUANTITIES, corr_levels, far_levels, scatter_levels, grid_levels, KALKER_ORDER)
+    certs = parts.pop("combined")
     quantities = {q: c.value for q, c in certs.items()}
     quantities.update({f"total_force_{c}": grid_levels[-1][f"total_force_{c}"] for c in nb.CONTACTS})
     quantities["total_force"] = quantities["total_force_inner"]
     stats = {"solver": "conformal normal contact (Polonsky-Keer, DC-FFT developed half-space) + FE finite-body "
                        "correction (P2, PARDISO/LU), fixed point on the pressures",
              "levels": corr_levels, "far_field_levels": far_levels, "scatter_levels": scatter_levels,
-             "grid_levels": grid_levels, "level_quantities": list(QUANTITIES), "remesh_floors": floors,
-             "certificates": {q: c.as_dict() for q, c in certs.items()},
-             "correction_certificates": {q: c.as_dict() for q, c in c_corr.items()},
-             "far_field_certificates": {q: c.as_dict() for q, c in c_far.items()},
-             "grid_certificates": {q: c.as_dict() for q, c in c_grid.items()},
+             "grid_levels": grid_levels, "level_quantities": list(QUANTITIES), **parts,
              "halfspace_start": nb.quantities(scene_setup, start), "time_s": time.perf_counter() - t0}
     return ModelResult("fem_finite_body", time_s=time.perf_counter() - t0, quantities=quantities, stats=stats)

@@ -9,16 +9,22 @@ extra gap and slip in every contact solve, a fixed point on the tractions). Thre
 1. **The correction** (FE mesh and correction grid refined together): correction grids spanning the roller
    (ns_k + 1 = (ns_0 + 1) 1.5^k cells along s, ds = L_R / (ns_k + 1); dx_k = dx_0 / 1.5^k exactly with
    dx_0 = 2.7 a_H / nx_0, nx_k the next odd count above nx_0 1.5^k plus one cell beyond each end, which the
-   lattice phases' dilated contact windows need), the FE mesh at ``numerics.fb_h_contact`` dx_k with one element
-   layer per cell, near-field fill 2 cells; the equilibrium on the scene's contact grid
-   (``numerics.conformal_cells_*``) for each. Certified by :func:`femcheck.solvers.convergence.certify` with the
-   correction's formal order 2 (``CORRECTION_ORDER``) and the re-meshing scatter as its floor: per quantity the
-   larger of the assumed 0.2 % and the spread measured over the coarsest level solved on
-   ``numerics.fb_scatter_meshes`` more meshes (the contact-line element size scaled by 1 %, 2 %, ...;
-   :func:`femcheck.solvers.split_certificate.remesh_floor`).
-2. **The far field** on the coarsest correction: the mesh grading and the largest element divided by 1.5 per
-   level (``numerics.fb_farfield_levels``), the part of the FE mesh that family 1 does not refine; certified
-   with the same floor.
+   lattice phases' dilated contact windows need), the FE mesh at ``numerics.fb_h_contact`` dx_k with
+   ``LAYERS_PER_CELL`` element layers per cell, near-field fill of one cell (``NEAR_FIELD``); the equilibrium on
+   the scene's contact grid (``numerics.conformal_cells_*``) for each. The fill is sized by the FE's near-field
+   error, not by the grid: with one layer per cell at 0.7 dx the FE's error of the singular response spreads two
+   cells, and a two-cell fill on the coarsest grid (3 mm of a 9 mm contact) moved sum f_lat by 20 %; at 0.35 dx
+   with two layers and a one-cell fill the family converges in one step (docs/notes/srb-split-compliance.md).
+   Certified by :func:`femcheck.solvers.finite_body_certificate.correction_certificate` at the correction's formal
+   order 2 with the re-meshing floor: per quantity the larger of the assumed 0.2 % and the spread measured over
+   the far field's first mesh solved on ``numerics.fb_scatter_meshes`` more meshes (the contact-line element size
+   scaled by 1 %, 2 %, ...; :func:`femcheck.solvers.split_certificate.remesh_floor`).
+2. **The far field** on the coarsest correction grid: the mesh grading and the largest element divided by 1.5 per
+   level (``numerics.fb_farfield_levels``), the part of the FE mesh that family 1 does not refine, with the near
+   field held at the coarser ``FARFIELD_H_FACTOR`` x ``fb_h_contact`` and one layer per cell (family 1's near
+   field would put the third far-field level at 1.2M DOFs) and filled over that mesh's near-field error, two cells
+   (with one, the error left in D moves with the grading: sum f_lat +0.21 %, -0.91 % over the three levels at
+   mu 0.1, against +0.07 %, -0.15 % with two); certified with the same floor.
 3. **The contact grid** at the finest correction: levels from ``numerics.fb_cells_x`` x ``fb_cells_s`` refining
    by sqrt 2 with exactly geometric cell sizes, each level the mean over ``numerics.fb_phases`` lattice phases of
    the contact's leading edge (:mod:`femcheck.cect.lattice_phase`: a single window's lateral forces snap to its
@@ -55,15 +61,19 @@ from ..fem import srb_rolling as fe
 from ..fem.rolling_compliance import MeshSettings
 from ..fem.srb_finite_body import finite_body_equilibrium
 from ..result import ModelResult
-from ..solvers.convergence import certify
-from ..solvers.split_certificate import CORRECTION_ORDER, combine, grid_certificate, remesh_floor, scatter_scales
+from ..solvers.finite_body_certificate import certify_parts
+from ..solvers.split_certificate import scatter_scales
 from . import _srb_rolling_out as out
 
 CORRECTION_RATIO = 1.5          # correction grids: ns + 1 = 16, 24, 36, 54 cells along the roller (integers)
 GRID_RATIO = math.sqrt(2.0)     # contact grids: 41 x 81, 58 x 115, 82 x 162, 116 x 229
 CORRECTION_HALF_X = 1.35        # correction window along x / a_H on the coarsest level (as the CECT's)
 CORRECTION_SPAN_S = 3.0         # along s: clipped to the roller length (fe.grids), so it spans the roller
-NEAR_FIELD = 2                  # cells of harmonic fill around the loaded cell (compliance_split.correction)
+NEAR_FIELD = 1                  # cells of harmonic fill around the loaded cell (compliance_split.correction)
+LAYERS_PER_CELL = 2             # FE element layers per correction cell along s (the correction family)
+FARFIELD_H_FACTOR = 2.0         # the far-field family's contact-line element / the correction family's,
+FARFIELD_LAYERS = 1             # its layers per cell
+FARFIELD_NEAR_FIELD = 2         # and its fill: the width of that mesh's near-field error (one cell leaves it in D)
 QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y", "tilt", "skew",
               "friction_power_inner", "friction_power_outer", "adhesion_fraction_inner", "adhesion_fraction_outer",
               "omega_m_deviation", "omega_R_deviation")
@@ -82,13 +92,15 @@ def correction_grid(p: dict[str, Any], k: int) -> tuple[int, int, float, dict]:
     return nx, ns, half_x, grids
 
 
-def mesh_of(p: dict[str, Any], far: int = 0, scale: float = 1.0) -> MeshSettings:
-    """FE mesh of the correction: ``fb_h_contact`` dx at the contact line (times ``scale``: the same level
-    re-meshed), one layer per cell; far-field level ``far`` divides the grading and the largest element (2 mm) by
-    1.5^far."""
-    f = CORRECTION_RATIO ** far
-    return MeshSettings(p["numerics.fb_h_contact"] * scale, p["numerics.fem_grading"] / (math.sqrt(2.0) * f), 2e-3 / f,
-                        1, 2)
+def mesh_of(p: dict[str, Any], far: int | None = None, scale: float = 1.0) -> MeshSettings:
+    """FE mesh of a correction level (``far`` None): ``fb_h_contact`` dx at the contact line (times ``scale``: the
+    same level re-meshed), ``LAYERS_PER_CELL`` layers per cell; or of far-field level ``far`` (0, 1, ...): the
+    near field at ``FARFIELD_H_FACTOR`` x ``fb_h_contact`` with ``FARFIELD_LAYERS`` layers, the grading and the
+    largest element (2 mm) divided by 1.5^far."""
+    f = CORRECTION_RATIO ** (far or 0)
+    h, layers = ((p["numerics.fb_h_contact"], LAYERS_PER_CELL) if far is None else
+                 (FARFIELD_H_FACTOR * p["numerics.fb_h_contact"], FARFIELD_LAYERS))
+    return MeshSettings(h * scale, p["numerics.fem_grading"] / (math.sqrt(2.0) * f), 2e-3 / f, layers, 2)
 
 
 def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
@@ -99,23 +111,23 @@ def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
     return "srb-fb-tables-" + hashlib.sha256(blob.encode()).hexdigest()[:32]
 
 
-def _tables_path(p: dict[str, Any], k: int, far: int, mesh: MeshSettings | None = None):
+def _tables_path(p: dict[str, Any], k: int, far: int | None, mesh: MeshSettings | None = None):
     return cache.cache_dir() / f"{_tables_key(p, k, mesh_of(p, far) if mesh is None else mesh)}.npz"
 
 
 def _tables_case(case: tuple[dict[str, Any], int, int]):
-    """The FE tables of correction level k on far-field level ``far`` (a picklable case for
+    """The FE tables of correction level k (``far`` None) or far-field level ``far`` (a picklable case for
     :func:`femcheck.executor.map_cases`)."""
     p, k, far = case
     return fe.compliance(p, correction_grid(p, k)[3], mesh_of(p, far))
 
 
-def prefetch(p: dict[str, Any], levels: list[tuple[int, int]], scheduler: str, progress=None) -> list:
-    """Solve the FE tables of the correction ``levels`` [(k, far), ...] that the result cache lacks on the dask
-    cluster at ``scheduler``, all at once, and store them in the cache, where :func:`correction_level` finds
-    them. The coarsest (0, 0) is left out: it is always solved here (a stored reference records its meshes).
-    Returns the levels solved."""
-    todo = [(k, far) for k, far in levels if (k, far) != (0, 0) and not _tables_path(p, k, far).is_file()]
+def prefetch(p: dict[str, Any], levels: list[tuple[int, int | None]], scheduler: str, progress=None) -> list:
+    """Solve the FE tables of the ``levels`` [(k, far), ...] (far None: correction level k; else far-field level
+    far) that the result cache lacks on the dask cluster at ``scheduler``, all at once, and store them in the
+    cache, where :func:`correction_level` finds them. The coarsest correction (0, None) is left out: it is always
+    solved here (a stored reference records its meshes). Returns the levels solved."""
+    todo = [(k, far) for k, far in levels if (k, far) != (0, None) and not _tables_path(p, k, far).is_file()]
     if not todo:
         return []
 
@@ -126,7 +138,7 @@ def prefetch(p: dict[str, Any], levels: list[tuple[int, int]], scheduler: str, p
         finished.append(i)
         if progress:
             k, far = todo[i]
-            progress(f"fem_finite_body: FE correction level {k + 1}, far field {far + 1} solved on the cluster "
+            progress(f"fem_finite_body: FE {_level_name(k, far)} solved on the cluster "
                      f"({len(finished)} of {len(todo)} levels done)")
 
     if progress:
@@ -135,24 +147,27 @@ def prefetch(p: dict[str, Any], levels: list[tuple[int, int]], scheduler: str, p
     return todo
 
 
-def correction_level(p: dict[str, Any], constants, k: int, far: int = 0, progress=None,
+def _level_name(k: int, far: int | None) -> str:
+    return f"correction level {k + 1}" if far is None else f"far-field level {far + 1}"
+
+
+def correction_level(p: dict[str, Any], constants, k: int, far: int | None = None, progress=None,
                      scale: float = 1.0) -> cs.Correction:
-    """The correction of level k on far-field mesh level ``far`` (``scale``: the contact-line element size scaled,
-    the same level re-meshed) (FE tables computed, or read from the result cache except the coarsest
-    (0, 0, 1), whose meshes a stored reference records)."""
+    """The correction of level k (``far`` None) or of far-field level ``far`` on the coarsest correction grid
+    (``scale``: the contact-line element size scaled, the same level re-meshed) (FE tables computed, or read from
+    the result cache except the coarsest correction (0, None, 1), whose meshes a stored reference records)."""
     nx, ns, _, grids = correction_grid(p, k)
     mesh = mesh_of(p, far, scale)
-    reuse = k > 0 or far > 0 or scale != 1.0
+    reuse = k > 0 or far is not None or scale != 1.0
     path = _tables_path(p, k, far, mesh)
     tables = compliance_store.load(path, grids) if reuse and path.is_file() else None
     if tables is None:
         if progress:
-            progress(f"fem_finite_body: FE correction level {k + 1}, far field {far + 1} ({nx} x {ns} cells over "
-                     "the roller)")
+            progress(f"fem_finite_body: FE {_level_name(k, far)} ({nx} x {ns} cells over the roller)")
         tables = fe.compliance(p, grids, mesh)
         if reuse:
             compliance_store.save(path, tables)
-    return cs.correction(tables, constants, NEAR_FIELD)
+    return cs.correction(tables, constants, NEAR_FIELD if far is None else FARFIELD_NEAR_FIELD)
 
 
 def _values(problem, r: EquilibriumResult) -> dict[str, float]:
@@ -169,33 +184,33 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
                               int(p["numerics.fb_phases"]))
     n_far = int(p["numerics.fb_farfield_levels"])
     if (scheduler := executor.current_scheduler()) is not None:
-        prefetch(p, [(k, 0) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler, progress)
+        prefetch(p, [(k, None) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler, progress)
 
-    def on_scene_grid(k: int, far: int, prev: EquilibriumResult) -> tuple[cs.Correction, EquilibriumResult, dict]:
+    def on_scene_grid(k: int, far: int | None, prev: EquilibriumResult
+                      ) -> tuple[cs.Correction, EquilibriumResult, dict]:
         corr = correction_level(p, constants, k, far, progress)
         fb = finite_body_equilibrium(problem, numerics, corr, prev)
         nx, ns, half_x, _ = correction_grid(p, k)
-        lv = {"level": k, "far_field": far, "nx": nx, "ns": ns, "h": 1.0 / CORRECTION_RATIO ** (k + far),
+        lv = {"level": k, "far_field": far, "nx": nx, "ns": ns, "h": 1.0 / CORRECTION_RATIO ** (k + (far or 0)),
               "half_x": half_x, "n_dofs": corr.stats["fe"].get("n_dofs"),
               "fe_time_s": corr.stats["fe"].get("total_s"), "outer_iterations": fb.iterations,
               **_values(problem, fb.result)}
         if progress:
-            progress(f"fem_finite_body: correction level {k + 1}, far field {far + 1}: sum f_lat "
-                     f"{lv['f_lat_sum']:.5e}")
+            progress(f"fem_finite_body: {_level_name(k, far)}: sum f_lat {lv['f_lat_sum']:.5e}")
         return corr, fb.result, lv
 
     # the coarsest correction first, from the half-space start: level 0 of the stored reference, which
     # reference_check re-solves alone
     corr_levels, prev, corr = [], start, None
     for k in range(n_corr):
-        corr, prev, lv = on_scene_grid(k, 0, prev)
+        corr, prev, lv = on_scene_grid(k, None, prev)
         corr_levels.append(lv)
-    far_levels, fprev = [corr_levels[0]], prev
-    for far in range(1, n_far):
+    far_levels, fprev = [], start
+    for far in range(n_far):
         _, fprev, lv = on_scene_grid(0, far, fprev)
         far_levels.append(lv)
-    # the re-meshing scatter of each quantity, measured: the coarsest correction on fb_scatter_meshes more meshes of
-    # the same level (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
+    # the re-meshing scatter of each quantity, measured: the far field's first mesh re-meshed fb_scatter_meshes
+    # times (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
     scatter_levels = []
     for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
         fb = finite_body_equilibrium(problem, numerics, correction_level(p, constants, 0, 0, progress, scale),
@@ -220,22 +235,11 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
                             "domain_s": lv.domain[1], "phases": phases, **mean,
                             **{f"{k}_phase_spread": v for k, v in spread.items()}})
     names = [q for q in QUANTITIES if q in corr_levels[0]]
-    floors = {q: remesh_floor([corr_levels[0]] + scatter_levels, q) for q in names}
-    c_corr = {q: certify([lv["h"] for lv in corr_levels], [lv[q] for lv in corr_levels], CORRECTION_ORDER,
-                         floor=floors[q]) for q in names}
-    c_far = {q: certify([lv["h"] for lv in far_levels], [lv[q] for lv in far_levels], floor=floors[q])
-             for q in names}
-    c_grid = {q: grid_certificate([lv["h"] for lv in grid_levels], [lv[q] for lv in grid_levels],
-                                  [lv[f"{q}_phase_spread"] for lv in grid_levels], KALKER_ORDER) for q in names}
-    certs = {q: combine({"contact grid": c_grid[q], "correction": c_corr[q], "far field": c_far[q]})
-             for q in names}
+    parts = certify_parts(names, corr_levels, far_levels, scatter_levels, grid_levels, KALKER_ORDER)
+    combined = parts.pop("combined")
     stats = {"solver": "CECT roller equilibrium (half-space DC-FFT contacts) + FE finite-body correction "
                        "(P2, PARDISO/LU), fixed point on the tractions",
              "levels": corr_levels, "grid_levels": grid_levels, "level_quantities": names,
-             "certificates": {q: c.as_dict() for q, c in certs.items()},
-             "correction_certificates": {q: c.as_dict() for q, c in c_corr.items()},
-             "far_field_levels": far_levels, "scatter_levels": scatter_levels, "remesh_floors": floors,
-             "far_field_certificates": {q: c.as_dict() for q, c in c_far.items()},
-             "grid_certificates": {q: c.as_dict() for q, c in c_grid.items()},
+             "far_field_levels": far_levels, "scatter_levels": scatter_levels, **parts,
              "halfspace_start": _values(problem, start), "time_s": time.perf_counter() - t0}
-    return ModelResult("fem_finite_body", quantities={q: c.value for q, c in certs.items()}, stats=stats)
+    return ModelResult("fem_finite_body", quantities={q: c.value for q, c in combined.items()}, stats=stats)

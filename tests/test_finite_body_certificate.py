@@ -1,0 +1,48 @@
+"""femcheck.solvers.finite_body_certificate: the correction part of a finite-body reference (formal order, the
+re-meshing floor) and the three parts assembled."""
+import pytest
+
+from femcheck.solvers.finite_body_certificate import certify_parts, correction_certificate
+from femcheck.solvers.split_certificate import CORRECTION_ORDER
+
+H = [1.0, 1 / 1.5, 1 / 2.25]            # the correction levels' ratio 1.5
+
+
+def test_second_order_levels_extrapolate_to_their_limit():
+    q = [2.0 + 0.3 * h ** 2 for h in H]                # exactly second order, limit 2
+    c = correction_certificate(H, q, 2e-3)
+    assert c.certified and c.value == pytest.approx(2.0, rel=1e-12) and c.order == pytest.approx(2.0)
+    # the GCI 1.25 |2 - q[-1]| / 2 = 1.85 % is above the floor: kept
+    assert c.error_estimate == pytest.approx(1.25 * 0.3 / 2.25 ** 2 / 2.0, rel=1e-9)
+
+
+def test_faster_than_formal_is_extrapolated_at_the_formal_order():
+    """The measured family's shape: -0.94 % then -0.06 % (observed order 6.8, outside a factor 2 of 2). Richardson
+    at the observed order would claim 0.004 %; at the formal order the step is (q3 - q2) / (1.5^2 - 1)."""
+    q = [5.4367, 5.3856, 5.3823]
+    c = correction_certificate(H, q, 2e-3)
+    assert c.certified and c.order > 2 * CORRECTION_ORDER
+    assert c.value == pytest.approx(5.3823 + (5.3823 - 5.3856) / (1.5 ** 2 - 1), rel=1e-12)
+    # the formal-order GCI (0.061 %) is below the floor: the estimate is the floor
+    assert c.error_estimate == 2e-3 and "re-meshing floor" in c.note
+
+
+def test_oscillating_levels_above_the_floor_are_not_certified():
+    c = correction_certificate(H, [1.0, 1.02, 0.99], 2e-3)
+    assert not c.certified
+
+
+def test_parts_combine_with_floors_measured_on_the_far_fields_first_mesh():
+    corr = [{"h": h, "q": 2.0 + 0.3 * h ** 2} for h in H]
+    far = [{"h": h, "q": 2.1} for h in H[:1]] + [{"h": H[1], "q": 2.1 + 1e-4}, {"h": H[2], "q": 2.1 - 1e-4}]
+    scatter = [{"q": 2.1 * 1.004}]                                         # 0.4 % scatter: the floor
+    grid = [{"h": h, "q": 3.0 + 0.1 * h, "q_phase_spread": 1e-4} for h in (1.0, 2 ** -0.5, 0.5)]
+    out = certify_parts(["q"], corr, far, scatter, grid, 1.0)
+    assert out["remesh_floors"]["q"] == pytest.approx(0.004, rel=1e-9)
+    c = out["combined"]["q"]
+    assert c.certified
+    # the grid's limit 3.0, plus the correction's step 2.0 - q_corr[-1], plus the far field's (converged: 0)
+    assert c.value == pytest.approx(3.0 + (2.0 - corr[-1]["q"]), rel=1e-12)
+    assert out["far_field_certificates"]["q"]["certified"]
+    assert set(out) == {"combined", "certificates", "correction_certificates", "far_field_certificates",
+                        "grid_certificates", "remesh_floors"}
