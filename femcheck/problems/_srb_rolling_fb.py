@@ -65,7 +65,7 @@ from ..solvers.finite_body_certificate import certify_parts
 from ..solvers.split_certificate import scatter_scales
 from . import _srb_rolling_out as out
 
-CORRECTION_RATIO = 1.5          # correction grids: ns + 1 = 16, 24, 36, 54 cells along the roller (integers)
+CORRECTION_RATIO = 1.5          # correction grids: ns + 1 = 16, 24, 36 cells along the roller (integers)
 GRID_RATIO = math.sqrt(2.0)     # contact grids: 41 x 81, 58 x 115, 82 x 162, 116 x 229
 CORRECTION_HALF_X = 1.35        # correction window along x / a_H on the coarsest level (as the CECT's)
 CORRECTION_SPAN_S = 3.0         # along s: clipped to the roller length (fe.grids), so it spans the roller
