@@ -1,8 +1,8 @@
-"""femcheck.solvers.finite_body_certificate: the correction part of a finite-body reference (formal order, the
-re-meshing floor) and the three parts assembled."""
+"""femcheck.solvers.finite_body_certificate: the parts of a finite-body reference (formal order, the re-meshing
+floor, convergence after one step) and the three parts assembled."""
 import pytest
 
-from femcheck.solvers.finite_body_certificate import certify_parts, correction_certificate
+from femcheck.solvers.finite_body_certificate import certify_parts, correction_certificate, family_certificate, settled
 from femcheck.solvers.split_certificate import CORRECTION_ORDER
 
 H = [1.0, 1 / 1.5, 1 / 2.25]            # the correction levels' ratio 1.5
@@ -32,17 +32,37 @@ def test_oscillating_levels_above_the_floor_are_not_certified():
     assert not c.certified
 
 
-def test_parts_combine_with_floors_measured_on_the_far_fields_first_mesh():
+def test_a_step_below_the_floor_after_a_larger_one_is_convergence_not_oscillation():
+    """The far field on the correction's near field, sum f_lat at mu 0.1 (1e-2): +0.46 % then -0.02 % against a
+    0.2 % floor. The second change is re-meshing scatter: settled at the finest level, estimate the floor."""
+    q = [5.4367, 5.4616, 5.4608]
+    for c in (family_certificate(H, q, 2e-3, None), correction_certificate(H, q, 2e-3)):
+        assert c.certified and c.value == q[-1] and c.error_estimate == 2e-3 and "after one step" in c.note
+    # 3 x the last change when that is above the floor
+    assert settled(H, [1.0, 1.01, 1.0098], 5e-4).error_estimate == pytest.approx(3 * 0.0002 / 1.0098, rel=1e-9)
+
+
+def test_a_last_change_above_the_floor_or_contracting_slower_than_second_order_is_not_settled():
+    # +1 % then -0.30 %: contracting fast enough (0.30 x 1.5^2 < 1), but the last change is above the floor
+    assert settled(H, [1.0, 1.01, 1.007], 2e-3) is None
+    assert not family_certificate(H, [1.0, 1.01, 1.007], 2e-3, None).certified
+    # -0.18 %: below the floor, but 0.18 x 1.5^2 = 0.40 > 0.30 %: not contracting as a second-order family
+    assert settled(H, [1.0, 1.003, 1.0012], 2e-3) is None
+    assert not family_certificate(H, [1.0, 1.003, 1.0012], 2e-3, None).certified
+
+
+def test_parts_combine_the_far_field_step_from_its_first_level():
+    """The correction's and the contact grid's levels are solved on the far field's first mesh (the coarsest
+    correction's), so the far field's step is its value minus its first level, not minus its finest."""
     corr = [{"h": h, "q": 2.0 + 0.3 * h ** 2} for h in H]
-    far = [{"h": h, "q": 2.1} for h in H[:1]] + [{"h": H[1], "q": 2.1 + 1e-4}, {"h": H[2], "q": 2.1 - 1e-4}]
-    scatter = [{"q": 2.1 * 1.004}]                                         # 0.4 % scatter: the floor
+    far = [dict(corr[0]), {"h": H[1], "q": corr[0]["q"] * 1.005}, {"h": H[2], "q": corr[0]["q"] * 1.00501}]
+    scatter = [{"q": corr[0]["q"] * 1.004}]                                # 0.4 % scatter: the floor
     grid = [{"h": h, "q": 3.0 + 0.1 * h, "q_phase_spread": 1e-4} for h in (1.0, 2 ** -0.5, 0.5)]
     out = certify_parts(["q"], corr, far, scatter, grid, 1.0)
     assert out["remesh_floors"]["q"] == pytest.approx(0.004, rel=1e-9)
     c = out["combined"]["q"]
-    assert c.certified
-    # the grid's limit 3.0, plus the correction's step 2.0 - q_corr[-1], plus the far field's (converged: 0)
-    assert c.value == pytest.approx(3.0 + (2.0 - corr[-1]["q"]), rel=1e-12)
-    assert out["far_field_certificates"]["q"]["certified"]
+    assert c.certified and out["far_field_certificates"]["q"]["certified"]
+    # the grid's limit 3.0, plus the correction's step 2.0 - q_corr[-1], plus the far field's: finest - first
+    assert c.value == pytest.approx(3.0 + (2.0 - corr[-1]["q"]) + (far[-1]["q"] - far[0]["q"]), rel=1e-12)
     assert set(out) == {"combined", "certificates", "correction_certificates", "far_field_certificates",
                         "grid_certificates", "remesh_floors"}

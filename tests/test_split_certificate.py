@@ -41,6 +41,19 @@ def test_combined_certificate_adds_the_parts_steps_and_estimates():
     assert not combine({"contact grid": grid, "correction": corr, "far field": far_not}).certified
 
 
+def test_a_combined_estimate_above_the_value_is_not_certified_whatever_its_parts_say():
+    """groove/crown 1.002's adhesion fraction (0.3 % of the cells): the contact grid's levels change by less than
+    their lattice-phase spread (290 %), so the part is certified by that floor with a 690 % estimate; the
+    combined value is not resolved and must not be certified."""
+    grid = Certificate(0.00304, 0.00304, None, 6.9, True, "grid: converged below the lattice phases' spread")
+    corr = Certificate(0.0113, 0.0113, 2.0, 0.02, True, "corr")
+    c = combine({"contact grid": grid, "correction": corr})
+    assert c.error_estimate > 1.0 and not c.certified and "not resolved" in c.note
+    # the same parts with a grid estimate of 50 %: resolved, certified
+    ok = combine({"contact grid": Certificate(0.00304, 0.00304, None, 0.5, True, "grid"), "correction": corr})
+    assert ok.error_estimate < 1.0 and ok.certified
+
+
 def test_remesh_floor_is_the_measured_spread_but_never_below_the_assumed_one():
     assert remesh_floor([{"q": 2.0}, {"q": 2.01}, {"q": 1.996}], "q") == pytest.approx(0.014 / 2.0)
     assert remesh_floor([{"q": 2.0}, {"q": 2.0001}], "q") == REMESH_SCATTER

@@ -8,11 +8,11 @@ developed half-space plus the FE correction of the whole roller and two ring seg
    two element layers per cell and a one-cell near-field fill) on the scene's contact grid
    (``numerics.cect_cells_*``, as the cect model's). Certified by
    :func:`femcheck.solvers.finite_body_certificate.correction_certificate` at the correction's formal order with
-   the measured re-meshing floor (the far field's first mesh on ``numerics.fb_scatter_meshes`` more meshes,
+   the measured re-meshing floor (the coarsest correction on ``numerics.fb_scatter_meshes`` more meshes,
    :func:`femcheck.solvers.split_certificate.remesh_floor`).
-2. **The far field** (grading and largest element / 1.5 per level, ``numerics.fb_farfield_levels``) on the
-   coarsest correction grid with a coarser near field (:func:`femcheck.problems._srb_rolling_fb.mesh_of`), same
-   grid and floor.
+2. **The far field** (grading and largest element / 1.5 per level, ``numerics.fb_farfield_levels``, the first
+   level the coarsest correction's own) on the coarsest correction grid and its near field
+   (:func:`femcheck.problems._srb_rolling_fb.mesh_of`), same floor.
 3. **The contact grid** at the finest correction: ``numerics.fb_grid_levels`` levels from ``numerics.fb_cells_x``
    x ``fb_cells_s`` refining by sqrt 2 (odd counts: a cell stays on the contact's centre, where p_max is read),
    each the mean over ``numerics.fb_phases`` lattice phases of the window along x and s together (the edges
@@ -139,8 +139,7 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
     n_corr, n_far, n_grid, phases = (int(p[f"numerics.fb_{k}"]) for k in
                                      ("correction_levels", "farfield_levels", "grid_levels", "phases"))
     if (scheduler := executor.current_scheduler()) is not None:
-        rfb.prefetch(pf, [(k, None) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler,
-                     progress)
+        rfb.prefetch(pf, rfb.far_field_plan(n_corr, n_far), scheduler, progress)
     cells0 = (int(p["numerics.fb_cells_x"]), int(p["numerics.fb_cells_s"]))
     domain0 = (float(p["numerics.cect_domain_x"]), float(p["numerics.cect_domain_s"]))
     # the correction's and the far field's levels on the scene's grid: level 0 is what reference_check re-solves
@@ -163,13 +162,14 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
         if progress:
             progress(f"fem_finite_body: correction level {k + 1}: semi_axis_y inner {q['semi_axis_y_inner']:.6e} m")
     finest_corr = corr
-    far_levels = []
-    for far in range(n_far):
+    # the far field's first level is the coarsest correction (the same mesh)
+    far_levels = [{**corr_levels[0], "far_field": 0}] if n_far else []
+    for far in range(1, n_far):
         _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, far, progress), start)
         far_levels.append({"level": 0, "far_field": far, "h": 1.0 / rfb.CORRECTION_RATIO ** far, **q})
     scatter_levels = []
     for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
-        _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, 0, progress, scale), start)
+        _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, None, progress, scale), start)
         scatter_levels.append({"h_contact_factor": scale, **q})
     grid_levels, prev = [], warm
     for lv in lattice_phase.levels(cells0, domain0, GRID_RATIO, n_grid, odd=True):

@@ -17,14 +17,14 @@ extra gap and slip in every contact solve, a fixed point on the tractions). Thre
    with two layers and a one-cell fill the family converges in one step (docs/notes/srb-split-compliance.md).
    Certified by :func:`femcheck.solvers.finite_body_certificate.correction_certificate` at the correction's formal
    order 2 with the re-meshing floor: per quantity the larger of the assumed 0.2 % and the spread measured over
-   the far field's first mesh solved on ``numerics.fb_scatter_meshes`` more meshes (the contact-line element size
-   scaled by 1 %, 2 %, ...; :func:`femcheck.solvers.split_certificate.remesh_floor`).
-2. **The far field** on the coarsest correction grid: the mesh grading and the largest element divided by 1.5 per
-   level (``numerics.fb_farfield_levels``), the part of the FE mesh that family 1 does not refine, with the near
-   field held at the coarser ``FARFIELD_H_FACTOR`` x ``fb_h_contact`` and one layer per cell (family 1's near
-   field would put the third far-field level at 1.2M DOFs) and filled over that mesh's near-field error, two cells
-   (with one, the error left in D moves with the grading: sum f_lat +0.21 %, -0.91 % over the three levels at
-   mu 0.1, against +0.07 %, -0.15 % with two); certified with the same floor.
+   the coarsest level solved on ``numerics.fb_scatter_meshes`` more meshes (the contact-line element size scaled
+   by 1 %, 2 %, ...; :func:`femcheck.solvers.split_certificate.remesh_floor`).
+2. **The far field** on the coarsest correction grid and its near field: the mesh grading and the largest element
+   divided by 1.5 per level (``numerics.fb_farfield_levels``, the first level the coarsest correction's own), the
+   part of the FE mesh that family 1 does not refine. Certified with the same floor, no expected order; its step
+   is taken from its first level, on which every other level is solved. Its effect depends on the near field it
+   is measured with: on a near field at 0.7 dx with one layer per cell the far levels moved sum f_lat by +0.07 %
+   where on this one they move it by +0.46 % and then -0.02 % (docs/notes/srb-split-compliance.md).
 3. **The contact grid** at the finest correction: levels from ``numerics.fb_cells_x`` x ``fb_cells_s`` refining
    by sqrt 2 with exactly geometric cell sizes, each level the mean over ``numerics.fb_phases`` lattice phases of
    the contact's leading edge (:mod:`femcheck.cect.lattice_phase`: a single window's lateral forces snap to its
@@ -70,10 +70,7 @@ GRID_RATIO = math.sqrt(2.0)     # contact grids: 41 x 81, 58 x 115, 82 x 162, 11
 CORRECTION_HALF_X = 1.35        # correction window along x / a_H on the coarsest level (as the CECT's)
 CORRECTION_SPAN_S = 3.0         # along s: clipped to the roller length (fe.grids), so it spans the roller
 NEAR_FIELD = 1                  # cells of harmonic fill around the loaded cell (compliance_split.correction)
-LAYERS_PER_CELL = 2             # FE element layers per correction cell along s (the correction family)
-FARFIELD_H_FACTOR = 2.0         # the far-field family's contact-line element / the correction family's,
-FARFIELD_LAYERS = 1             # its layers per cell
-FARFIELD_NEAR_FIELD = 2         # and its fill: the width of that mesh's near-field error (one cell leaves it in D)
+LAYERS_PER_CELL = 2             # FE element layers per correction cell along s
 QUANTITIES = ("f_x_inner", "f_x_outer", "f_lat_inner", "f_lat_outer", "f_lat_sum", "d_y", "tilt", "skew",
               "friction_power_inner", "friction_power_outer", "adhesion_fraction_inner", "adhesion_fraction_outer",
               "omega_m_deviation", "omega_R_deviation")
@@ -93,14 +90,12 @@ def correction_grid(p: dict[str, Any], k: int) -> tuple[int, int, float, dict]:
 
 
 def mesh_of(p: dict[str, Any], far: int | None = None, scale: float = 1.0) -> MeshSettings:
-    """FE mesh of a correction level (``far`` None): ``fb_h_contact`` dx at the contact line (times ``scale``: the
-    same level re-meshed), ``LAYERS_PER_CELL`` layers per cell; or of far-field level ``far`` (0, 1, ...): the
-    near field at ``FARFIELD_H_FACTOR`` x ``fb_h_contact`` with ``FARFIELD_LAYERS`` layers, the grading and the
-    largest element (2 mm) divided by 1.5^far."""
+    """FE mesh of a correction level (``far`` None) or of far-field level ``far`` (0, 1, ...; level 0 is the
+    correction's): ``fb_h_contact`` dx at the contact line (times ``scale``: the same level re-meshed),
+    ``LAYERS_PER_CELL`` layers per cell, the grading and the largest element (2 mm) divided by 1.5^far."""
     f = CORRECTION_RATIO ** (far or 0)
-    h, layers = ((p["numerics.fb_h_contact"], LAYERS_PER_CELL) if far is None else
-                 (FARFIELD_H_FACTOR * p["numerics.fb_h_contact"], FARFIELD_LAYERS))
-    return MeshSettings(h * scale, p["numerics.fem_grading"] / (math.sqrt(2.0) * f), 2e-3 / f, layers, 2)
+    return MeshSettings(p["numerics.fb_h_contact"] * scale, p["numerics.fem_grading"] / (math.sqrt(2.0) * f),
+                        2e-3 / f, LAYERS_PER_CELL, 2)
 
 
 def _tables_key(p: dict[str, Any], k: int, mesh: MeshSettings) -> str:
@@ -115,7 +110,7 @@ def _tables_path(p: dict[str, Any], k: int, far: int | None, mesh: MeshSettings 
     return cache.cache_dir() / f"{_tables_key(p, k, mesh_of(p, far) if mesh is None else mesh)}.npz"
 
 
-def _tables_case(case: tuple[dict[str, Any], int, int]):
+def _tables_case(case: tuple[dict[str, Any], int, int | None]):
     """The FE tables of correction level k (``far`` None) or far-field level ``far`` (a picklable case for
     :func:`femcheck.executor.map_cases`)."""
     p, k, far = case
@@ -147,6 +142,12 @@ def prefetch(p: dict[str, Any], levels: list[tuple[int, int | None]], scheduler:
     return todo
 
 
+def far_field_plan(n_corr: int, n_far: int) -> list[tuple[int, int | None]]:
+    """The FE levels [(k, far), ...] of ``n_corr`` correction and ``n_far`` far-field levels (the far field's
+    first is the coarsest correction, not solved twice)."""
+    return [(k, None) for k in range(n_corr)] + [(0, far) for far in range(1, n_far)]
+
+
 def _level_name(k: int, far: int | None) -> str:
     return f"correction level {k + 1}" if far is None else f"far-field level {far + 1}"
 
@@ -167,7 +168,7 @@ def correction_level(p: dict[str, Any], constants, k: int, far: int | None = Non
         tables = fe.compliance(p, grids, mesh)
         if reuse:
             compliance_store.save(path, tables)
-    return cs.correction(tables, constants, NEAR_FIELD if far is None else FARFIELD_NEAR_FIELD)
+    return cs.correction(tables, constants, NEAR_FIELD)
 
 
 def _values(problem, r: EquilibriumResult) -> dict[str, float]:
@@ -184,7 +185,7 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
                               int(p["numerics.fb_phases"]))
     n_far = int(p["numerics.fb_farfield_levels"])
     if (scheduler := executor.current_scheduler()) is not None:
-        prefetch(p, [(k, None) for k in range(n_corr)] + [(0, far) for far in range(n_far)], scheduler, progress)
+        prefetch(p, far_field_plan(n_corr, n_far), scheduler, progress)
 
     def on_scene_grid(k: int, far: int | None, prev: EquilibriumResult
                       ) -> tuple[cs.Correction, EquilibriumResult, dict]:
@@ -205,15 +206,16 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
     for k in range(n_corr):
         corr, prev, lv = on_scene_grid(k, None, prev)
         corr_levels.append(lv)
-    far_levels, fprev = [], start
-    for far in range(n_far):
+    # the far field's first level is the coarsest correction (the same mesh)
+    far_levels, fprev = ([{**corr_levels[0], "far_field": 0}] if n_far else []), start
+    for far in range(1, n_far):
         _, fprev, lv = on_scene_grid(0, far, fprev)
         far_levels.append(lv)
-    # the re-meshing scatter of each quantity, measured: the far field's first mesh re-meshed fb_scatter_meshes
-    # times (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
+    # the re-meshing scatter of each quantity, measured: the coarsest correction re-meshed fb_scatter_meshes times
+    # (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
     scatter_levels = []
     for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
-        fb = finite_body_equilibrium(problem, numerics, correction_level(p, constants, 0, 0, progress, scale),
+        fb = finite_body_equilibrium(problem, numerics, correction_level(p, constants, 0, None, progress, scale),
                                      start)
         scatter_levels.append({"h_contact_factor": scale, **_values(problem, fb.result)})
     grid_levels = []

@@ -119,10 +119,10 @@ SCHEMA: dict[str, Key] = {
     "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (FE mesh and correction "
                                          "grid refined together by 1.5)", lo=1, hi=5, lo_closed=True, hi_closed=True),
     "numerics.fb_farfield_levels": Key("int", "-", "fem_finite_body: far-field mesh levels on the coarsest "
-                                       "correction (grading and largest element divided by 1.5)", lo=0, hi=4,
-                                       lo_closed=True, hi_closed=True),
+                                       "correction, itself the first (grading and largest element divided by 1.5)",
+                                       lo=0, hi=4, lo_closed=True, hi_closed=True),
     "numerics.fb_h_contact": Key("float", "dx", "fem_finite_body: FE element size at the contact line / the "
-                                 "correction grid's dx (the far-field levels: twice it)", lo=0.1, hi=2.0, hi_closed=True),
+                                 "correction grid's dx", lo=0.1, hi=2.0, hi_closed=True),
     "numerics.fb_cells_x": Key("int", "-", "fem_finite_body: contact cells along x on the coarsest contact grid",
                                lo=9, hi=201, lo_closed=True, hi_closed=True),
     "numerics.fb_cells_s": Key("int", "-", "fem_finite_body: contact cells along s on the coarsest contact grid",
