@@ -5,10 +5,10 @@ Each part is certified on its own levels with the others held fixed (:mod:`femch
 combined value is the base part's (the contact grid, solved at the finest correction) plus the other parts'
 extrapolation steps, each from the level the base part's levels were solved on (the correction's finest; the far
 field's first: every other level keeps the far field's first mesh), and its relative error estimate the sum of the
-parts' absolute estimates over the combined value: GCI bounds of separate discretisations add (Roache 1998 §5.9 applied part by part; the
-cross term, the correction's effect changing with the contact grid, is carried by the base part's levels, which
-are solved with the finest correction in place). Certified when every part is and the estimate is below
-the value itself (a bound larger than the value leaves it unresolved, whatever floors certified the parts).
+parts' absolute estimates over the combined value: GCI bounds of separate discretisations add (Roache 1998 §5.9
+applied part by part; the cross term, the correction's effect changing with the contact grid, is carried by the base
+part's levels, which are solved with the finest correction in place). Certified when every part is and the estimate
+is below the value itself (a bound larger than the value leaves it unresolved, whatever floors certified the parts).
 """
 from __future__ import annotations
 
