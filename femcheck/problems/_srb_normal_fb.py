@@ -31,7 +31,6 @@ import math
 import time
 from typing import Any
 
-from .. import executor
 from ..cect import lattice_phase
 from ..cect.influence import combined_constants
 from ..cect.refinement import KALKER_ORDER
@@ -41,8 +40,8 @@ from ..materials import Elastic
 from ..result import ModelResult
 from ..scene import Key
 from ..solvers.finite_body_certificate import certify_parts
-from ..solvers.split_certificate import SCATTER_MESHES_KEY, scatter_scales
 from . import _srb_rolling_fb as rfb
+from ._finite_body_keys import SRB_COARSE, SRB_DEFAULTS, SRB_KEYS
 
 GRID_RATIO = math.sqrt(2.0)
 QUANTITIES = tuple(f"{q}_{c}" for c in nb.CONTACTS for q in nb.QUANTITIES)
@@ -57,48 +56,20 @@ SCHEMA: dict[str, Key] = {
     "numerics.cect_domain_s": Key("float", "b_H", "cect and fem_finite_body: window half-width along s / the "
                                   "larger Hertz b_H (clipped to the roller)", lo=1.1, hi=1.4, lo_closed=True,
                                   hi_closed=True),
-    "numerics.fb_correction_cells_x": Key("int", "-", "fem_finite_body: correction cells along x, coarsest level",
-                                          lo=5, hi=41, lo_closed=True, hi_closed=True),
-    "numerics.fb_correction_cells_s": Key("int", "-", "fem_finite_body: correction cells along the roller, "
-                                          "coarsest level", lo=7, hi=61, lo_closed=True, hi_closed=True),
-    "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (ratio 1.5)", lo=1, hi=5,
-                                         lo_closed=True, hi_closed=True),
-    "numerics.fb_farfield_levels": Key("int", "-", "fem_finite_body: far-field levels on the coarsest correction",
-                                       lo=0, hi=4, lo_closed=True, hi_closed=True),
-    "numerics.fb_h_contact": Key("float", "dx", "fem_finite_body: FE element size at the contact line / the "
-                                 "correction cell", lo=0.3, hi=2.0, lo_closed=True, hi_closed=True),
     "numerics.fb_grading": Key("float", "-", "fem_finite_body: FE mesh grading away from the contacts", lo=0.05,
                                hi=1.0, lo_closed=True, hi_closed=True),
-    "numerics.fb_cells_x": Key("int", "-", "fem_finite_body: contact cells along x, coarsest contact grid", lo=9,
-                               hi=201, lo_closed=True, hi_closed=True),
-    "numerics.fb_cells_s": Key("int", "-", "fem_finite_body: contact cells along s, coarsest contact grid", lo=9,
-                               hi=401, lo_closed=True, hi_closed=True),
-    "numerics.fb_grid_levels": Key("int", "-", "fem_finite_body: contact-grid levels (ratio sqrt 2)", lo=1, hi=6,
-                                   lo_closed=True, hi_closed=True),
-    "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
-                              hi=8, lo_closed=True, hi_closed=True),
-    "numerics.fb_scatter_meshes": SCATTER_MESHES_KEY,
+    **SRB_KEYS,
 }
 DEFAULTS: dict[str, Any] = {
     "numerics.cect_cells_x": 61,
     "numerics.cect_cells_s": 121,
     "numerics.cect_domain_x": 1.35,
     "numerics.cect_domain_s": 1.25,
-    # the srb-rolling finite-body reference's correction family (its defaults: the same FE tables)
-    "numerics.fb_correction_cells_x": 9,
-    "numerics.fb_correction_cells_s": 15,
-    "numerics.fb_correction_levels": 3,
-    "numerics.fb_farfield_levels": 3,
-    "numerics.fb_h_contact": 0.35,
     "numerics.fb_grading": 0.4,
-    "numerics.fb_cells_x": 41,
-    "numerics.fb_cells_s": 81,
-    "numerics.fb_grid_levels": 4,
-    "numerics.fb_phases": 4,
-    "numerics.fb_scatter_meshes": 3,
+    # the srb-rolling finite-body reference's correction family (its defaults: the same FE tables)
+    **SRB_DEFAULTS,
 }
-COARSE = {"numerics.fb_correction_levels": 1, "numerics.fb_farfield_levels": 0, "numerics.fb_grid_levels": 1,
-          "numerics.fb_phases": 1, "numerics.fb_scatter_meshes": 0}
+COARSE = SRB_COARSE
 
 
 def constants_of(p: dict[str, Any]):
@@ -136,42 +107,21 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
     """The three-part certified finite-body normal contact (module docstring)."""
     t0 = time.perf_counter()
     pf, constants = fb_params(p), constants_of(p)
-    n_corr, n_far, n_grid, phases = (int(p[f"numerics.fb_{k}"]) for k in
-                                     ("correction_levels", "farfield_levels", "grid_levels", "phases"))
-    if (scheduler := executor.current_scheduler()) is not None:
-        rfb.prefetch(pf, rfb.far_field_plan(n_corr, n_far), scheduler, progress)
+    n_grid, phases = int(p["numerics.fb_grid_levels"]), int(p["numerics.fb_phases"])
+    counts = (int(p["numerics.fb_correction_levels"]), int(p["numerics.fb_farfield_levels"]),
+              int(p["numerics.fb_scatter_meshes"]))
     cells0 = (int(p["numerics.fb_cells_x"]), int(p["numerics.fb_cells_s"]))
     domain0 = (float(p["numerics.cect_domain_x"]), float(p["numerics.cect_domain_s"]))
-    # the correction's and the far field's levels on the scene's grid: level 0 is what reference_check re-solves
+    # the FE families on the scene's grid: the coarsest correction is what reference_check re-solves
     scene_setup = nb.setup(p, int(p["numerics.cect_cells_x"]), int(p["numerics.cect_cells_s"]), *domain0)
     start = nb.solve_pair(scene_setup, constants)
 
-    def on_scene_grid(corr, warm) -> tuple[nb.NormalPair, dict]:
+    def on_scene_grid(corr, warm: nb.NormalPair) -> tuple[nb.NormalPair, dict]:
         r = nb.solve_pair(scene_setup, constants, corr, warm)
         return r, {**nb.quantities(scene_setup, r), "passes": r.passes}
 
-    corr_levels, warm, corr = [], start, None
-    for k in range(n_corr):
-        corr = rfb.correction_level(pf, constants, k, None, progress)
-        warm, q = on_scene_grid(corr, warm)
-        nx, ns, half_x, _ = rfb.correction_grid(pf, k)
-        st = corr.stats["fe"]
-        corr_levels.append({"level": k, "far_field": None, "nx": nx, "ns": ns, "half_x": half_x,
-                            "h": 1.0 / rfb.CORRECTION_RATIO ** k, "n_dofs": st.get("n_dofs"),
-                            "fe_time_s": st.get("total_s"), **q})
-        if progress:
-            progress(f"fem_finite_body: correction level {k + 1}: semi_axis_y inner {q['semi_axis_y_inner']:.6e} m")
-    finest_corr = corr
-    # the far field's first level is the coarsest correction (the same mesh)
-    far_levels = [{**corr_levels[0], "far_field": 0}] if n_far else []
-    for far in range(1, n_far):
-        _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, far, progress), start)
-        far_levels.append({"level": 0, "far_field": far, "h": 1.0 / rfb.CORRECTION_RATIO ** far, **q})
-    scatter_levels = []
-    for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
-        _, q = on_scene_grid(rfb.correction_level(pf, constants, 0, None, progress, scale), start)
-        scatter_levels.append({"h_contact_factor": scale, **q})
-    grid_levels, prev = [], warm
+    fam = rfb.correction_families(pf, constants, counts, on_scene_grid, start, progress, shown="semi_axis_y_inner")
+    grid_levels, prev = [], fam.state
     for lv in lattice_phase.levels(cells0, domain0, GRID_RATIO, n_grid, odd=True):
         samples = []
         # both windows dilated together: the x edges snap to the x lattice, the s edges to the s lattice
@@ -180,20 +130,20 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
             if progress:
                 progress(f"fem_finite_body: contact grid {lv.cells[0]} x {lv.cells[1]}, phase {j + 1}/{phases}")
             su = nb.setup(p, *lv.cells, dx_, ds_)
-            prev = nb.solve_pair(su, constants, finest_corr, prev)
+            prev = nb.solve_pair(su, constants, fam.finest, prev)
             samples.append(nb.quantities(su, prev))
         mean, spread = lattice_phase.phase_mean(samples)
         grid_levels.append({"nx": lv.cells[0], "ns": lv.cells[1], "h": lv.h, "domain_x": lv.domain[0],
                             "domain_s": lv.domain[1], "phases": phases, **mean,
                             **{f"{k}_phase_spread": v for k, v in spread.items()}})
-    parts = certify_parts(QUANTITIES, corr_levels, far_levels, scatter_levels, grid_levels, KALKER_ORDER)
+    parts = certify_parts(QUANTITIES, fam.correction, fam.far_field, fam.scatter, grid_levels, KALKER_ORDER)
     certs = parts.pop("combined")
     quantities = {q: c.value for q, c in certs.items()}
     quantities.update({f"total_force_{c}": grid_levels[-1][f"total_force_{c}"] for c in nb.CONTACTS})
     quantities["total_force"] = quantities["total_force_inner"]
     stats = {"solver": "conformal normal contact (Polonsky-Keer, DC-FFT developed half-space) + FE finite-body "
                        "correction (P2, PARDISO/LU), fixed point on the pressures",
-             "levels": corr_levels, "far_field_levels": far_levels, "scatter_levels": scatter_levels,
+             "levels": fam.correction, "far_field_levels": fam.far_field, "scatter_levels": fam.scatter,
              "grid_levels": grid_levels, "level_quantities": list(QUANTITIES), **parts,
              "halfspace_start": nb.quantities(scene_setup, start), "time_s": time.perf_counter() - t0}
     return ModelResult("fem_finite_body", time_s=time.perf_counter() - t0, quantities=quantities, stats=stats)

@@ -48,8 +48,8 @@ import hashlib
 import json
 import math
 import time
-from dataclasses import replace
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import Any, Callable
 
 from .. import cache, executor, provenance
 from ..cect import lattice_phase
@@ -171,6 +171,64 @@ def correction_level(p: dict[str, Any], constants, k: int, far: int | None = Non
     return cs.correction(tables, constants, NEAR_FIELD)
 
 
+@dataclass
+class Families:
+    """The FE families of a finite-body reference on the scene's contact grid, as level dicts (``h`` and the
+    quantities): ``correction`` (levels 0, 1, ...), ``far_field`` (its first level the coarsest correction's, not
+    solved twice), ``scatter`` (the coarsest correction re-meshed, ``h_contact_factor``); ``finest`` the finest
+    correction and ``state`` the solution with it, from which the contact-grid levels start."""
+
+    correction: list[dict]
+    far_field: list[dict]
+    scatter: list[dict]
+    finest: cs.Correction
+    state: Any
+
+
+def correction_families(p: dict[str, Any], constants, counts: tuple[int, int, int],
+                        solve: Callable[[cs.Correction, Any], tuple[Any, dict]], start: Any, progress=None,
+                        shown: str = "f_lat_sum") -> Families:
+    """Solve the reference's contact problem on the scene's grid with every FE level of the correction family, the
+    far-field family and the re-meshed coarsest correction (module docstring items 1 and 2). ``counts``: correction
+    levels, far-field levels (0: none, as in a coarse re-solve), re-meshed copies; ``solve(corr, warm) -> (state,
+    quantities)``: the reference's solve with correction ``corr`` from the solution ``warm``; ``start``: the
+    half-space solution; ``shown``: the quantity the progress lines show. With a dask scheduler in effect the
+    missing FE levels are solved there first (:func:`prefetch`)."""
+    n_corr, n_far, n_scatter = counts
+    if (scheduler := executor.current_scheduler()) is not None:
+        prefetch(p, far_field_plan(n_corr, n_far), scheduler, progress)
+
+    def level(k: int, far: int | None, warm: Any) -> tuple[cs.Correction, Any, dict]:
+        corr = correction_level(p, constants, k, far, progress)
+        state, q = solve(corr, warm)
+        nx, ns, half_x, _ = correction_grid(p, k)
+        lv = {"level": k, "far_field": far, "nx": nx, "ns": ns, "h": 1.0 / CORRECTION_RATIO ** (k + (far or 0)),
+              "half_x": half_x, "n_dofs": corr.stats["fe"].get("n_dofs"),
+              "fe_time_s": corr.stats["fe"].get("total_s"), **q}
+        if progress:
+            progress(f"fem_finite_body: {_level_name(k, far)}: {shown} {lv[shown]:.5e}")
+        return corr, state, lv
+
+    # the coarsest correction first, from the half-space start: level 0 of the stored reference, which
+    # reference_check re-solves alone
+    correction, state, finest = [], start, None
+    for k in range(n_corr):
+        finest, state, lv = level(k, None, state)
+        correction.append(lv)
+    far_field = [{**correction[0], "far_field": 0}] if n_far else []
+    warm = start
+    for far in range(1, n_far):
+        _, warm, lv = level(0, far, warm)
+        far_field.append(lv)
+    # the re-meshing scatter of each quantity, measured: the coarsest correction re-meshed n_scatter times (the
+    # contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
+    scatter = []
+    for scale in scatter_scales(n_scatter):
+        _, q = solve(correction_level(p, constants, 0, None, progress, scale), start)
+        scatter.append({"h_contact_factor": scale, **q})
+    return Families(correction, far_field, scatter, finest, state)
+
+
 def _values(problem, r: EquilibriumResult) -> dict[str, float]:
     q = out.quantities(problem, r)
     return {k: float(q[k]) for k in QUANTITIES if q.get(k) is not None}
@@ -181,43 +239,16 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
     """The three-part certified finite-body equilibrium (module docstring) from the half-space equilibrium
     ``start`` on the scene's grid ``numerics``."""
     t0 = time.perf_counter()
-    n_corr, n_grid, phases = (int(p["numerics.fb_correction_levels"]), int(p["numerics.fb_grid_levels"]),
-                              int(p["numerics.fb_phases"]))
-    n_far = int(p["numerics.fb_farfield_levels"])
-    if (scheduler := executor.current_scheduler()) is not None:
-        prefetch(p, far_field_plan(n_corr, n_far), scheduler, progress)
+    n_grid, phases = int(p["numerics.fb_grid_levels"]), int(p["numerics.fb_phases"])
+    counts = (int(p["numerics.fb_correction_levels"]), int(p["numerics.fb_farfield_levels"]),
+              int(p["numerics.fb_scatter_meshes"]))
 
-    def on_scene_grid(k: int, far: int | None, prev: EquilibriumResult
-                      ) -> tuple[cs.Correction, EquilibriumResult, dict]:
-        corr = correction_level(p, constants, k, far, progress)
-        fb = finite_body_equilibrium(problem, numerics, corr, prev)
-        nx, ns, half_x, _ = correction_grid(p, k)
-        lv = {"level": k, "far_field": far, "nx": nx, "ns": ns, "h": 1.0 / CORRECTION_RATIO ** (k + (far or 0)),
-              "half_x": half_x, "n_dofs": corr.stats["fe"].get("n_dofs"),
-              "fe_time_s": corr.stats["fe"].get("total_s"), "outer_iterations": fb.iterations,
-              **_values(problem, fb.result)}
-        if progress:
-            progress(f"fem_finite_body: {_level_name(k, far)}: sum f_lat {lv['f_lat_sum']:.5e}")
-        return corr, fb.result, lv
+    def on_scene_grid(corr: cs.Correction, warm: EquilibriumResult) -> tuple[EquilibriumResult, dict]:
+        fb = finite_body_equilibrium(problem, numerics, corr, warm)
+        return fb.result, {"outer_iterations": fb.iterations, **_values(problem, fb.result)}
 
-    # the coarsest correction first, from the half-space start: level 0 of the stored reference, which
-    # reference_check re-solves alone
-    corr_levels, prev, corr = [], start, None
-    for k in range(n_corr):
-        corr, prev, lv = on_scene_grid(k, None, prev)
-        corr_levels.append(lv)
-    # the far field's first level is the coarsest correction (the same mesh)
-    far_levels, fprev = ([{**corr_levels[0], "far_field": 0}] if n_far else []), start
-    for far in range(1, n_far):
-        _, fprev, lv = on_scene_grid(0, far, fprev)
-        far_levels.append(lv)
-    # the re-meshing scatter of each quantity, measured: the coarsest correction re-meshed fb_scatter_meshes times
-    # (the contact-line element size scaled by 1 %, 2 %, ...: Gmsh moves every element)
-    scatter_levels = []
-    for scale in scatter_scales(p["numerics.fb_scatter_meshes"]):
-        fb = finite_body_equilibrium(problem, numerics, correction_level(p, constants, 0, None, progress, scale),
-                                     start)
-        scatter_levels.append({"h_contact_factor": scale, **_values(problem, fb.result)})
+    fam = correction_families(p, constants, counts, on_scene_grid, start, progress)
+    corr, prev = fam.finest, fam.state
     grid_levels = []
     cells0 = (int(p["numerics.fb_cells_x"]), int(p["numerics.fb_cells_s"]))
     domain0 = (float(p["numerics.conformal_domain_x"]), float(p["numerics.conformal_domain_s"]))
@@ -236,12 +267,12 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
         grid_levels.append({"nx": lv.cells[0], "ns": lv.cells[1], "h": lv.h, "domain_x": lv.domain[0],
                             "domain_s": lv.domain[1], "phases": phases, **mean,
                             **{f"{k}_phase_spread": v for k, v in spread.items()}})
-    names = [q for q in QUANTITIES if q in corr_levels[0]]
-    parts = certify_parts(names, corr_levels, far_levels, scatter_levels, grid_levels, KALKER_ORDER)
+    names = [q for q in QUANTITIES if q in fam.correction[0]]
+    parts = certify_parts(names, fam.correction, fam.far_field, fam.scatter, grid_levels, KALKER_ORDER)
     combined = parts.pop("combined")
     stats = {"solver": "CECT roller equilibrium (half-space DC-FFT contacts) + FE finite-body correction "
                        "(P2, PARDISO/LU), fixed point on the tractions",
-             "levels": corr_levels, "grid_levels": grid_levels, "level_quantities": names,
-             "far_field_levels": far_levels, "scatter_levels": scatter_levels, **parts,
+             "levels": fam.correction, "grid_levels": grid_levels, "level_quantities": names,
+             "far_field_levels": fam.far_field, "scatter_levels": fam.scatter, **parts,
              "halfspace_start": _values(problem, start), "time_s": time.perf_counter() - t0}
     return ModelResult("fem_finite_body", quantities={q: c.value for q, c in combined.items()}, stats=stats)

@@ -51,7 +51,7 @@ from ..fem.groove_rolling import FEM_DEFAULTS, FEM_SCHEMA
 from ..geometry.groove import GrooveRolling
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
-from ..solvers.split_certificate import SCATTER_MESHES_KEY
+from ._finite_body_keys import FINITE_BODY_KEYS
 
 MODEL_NAMES = ("cect", "planar", "fem", "fem_finite_body")
 DESIGN_QUANTITIES = ("creepage_x", "friction_power", "p_max")     # the conformal contact's rolling loss first
@@ -97,11 +97,7 @@ SCHEMA: dict[str, Key] = {
     "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (FE mesh and correction "
                                          "grid refined together, as fem's levels)", lo=1, hi=4, lo_closed=True,
                                          hi_closed=True),
-    "numerics.fb_grid_levels": Key("int", "-", "fem_finite_body: contact-grid levels from the scene's cells "
-                                   "(refined by sqrt 2)", lo=1, hi=5, lo_closed=True, hi_closed=True),
-    "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
-                              hi=8, lo_closed=True, hi_closed=True),
-    "numerics.fb_scatter_meshes": SCATTER_MESHES_KEY,
+    **FINITE_BODY_KEYS,
 }
 DEFAULTS: dict[str, Any] = {
     "materials.body1.rigid": False,
@@ -125,6 +121,9 @@ DEFAULTS: dict[str, Any] = {
 }
 REQUIRED = ("geometry.rolling_radius", "geometry.crown_radius", "geometry.groove_radius",
             "geometry.ring_curvature", "load.normal", "friction.mu", "kinematics.speed")
+# fem_finite_body's coarse re-solve: the coarsest correction on the scene's grid
+FB_COARSE = {"numerics.fb_correction_levels": 1, "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1,
+             "numerics.fb_scatter_meshes": 0}
 # fem: a stored reference, keyed on every input it reads (the cect/planar numerics do not enter it)
 DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.",
                                                "numerics.fem_"), "reference": True,
@@ -132,9 +131,7 @@ DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction."
                             # fem_finite_body: its coarse re-solve is the coarsest correction on the scene's grid
                             "fem_finite_body": {"params": ("geometry.", "load.", "friction.", "materials.",
                                                            "kinematics.", "numerics."), "reference": True,
-                                                "coarse": {"numerics.fb_correction_levels": 1,
-                                                           "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1,
-                                                           "numerics.fb_scatter_meshes": 0}}}
+                                                "coarse": FB_COARSE}}
 
 
 def geometry(params: dict[str, Any]) -> GrooveRolling:

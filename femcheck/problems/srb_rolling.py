@@ -48,8 +48,8 @@ from ..errors import InputError
 from ..geometry import srb_bearing as sb
 from ..result import ModelResult
 from ..scene import Key, Scene, elastic, material_keys, model_keys, tolerance_key
-from ..solvers.split_certificate import SCATTER_MESHES_KEY
 from . import _srb_rolling_out as out
+from ._finite_body_keys import SRB_COARSE, SRB_DEFAULTS, SRB_KEYS
 
 MODEL_NAMES = ("cect", "paper", "strip", "strip_s0", "full_slip", "fem", "fem_finite_body", "paper_fem")
 # seed 000's question: the lateral forces (their sum loads the cage and flanges), then the rolling-direction ones
@@ -111,27 +111,7 @@ SCHEMA: dict[str, Key] = {
                                   hi_closed=True),
     "numerics.fem_grading": Key("float", "-", "fem: mesh grading away from the contact", lo=0.05, hi=1.0,
                                 hi_closed=True),
-    "numerics.fb_correction_cells_x": Key("int", "-", "fem_finite_body: correction cells along x on its coarsest "
-                                          "level", lo=5, hi=41, lo_closed=True, hi_closed=True),
-    "numerics.fb_correction_cells_s": Key("int", "-", "fem_finite_body: correction cells along the roller on its "
-                                          "coarsest level (ns + 1 times 1.5^k should stay an integer)", lo=7, hi=81,
-                                          lo_closed=True, hi_closed=True),
-    "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (FE mesh and correction "
-                                         "grid refined together by 1.5)", lo=1, hi=5, lo_closed=True, hi_closed=True),
-    "numerics.fb_farfield_levels": Key("int", "-", "fem_finite_body: far-field mesh levels on the coarsest "
-                                       "correction, itself the first (grading and largest element divided by 1.5)",
-                                       lo=0, hi=4, lo_closed=True, hi_closed=True),
-    "numerics.fb_h_contact": Key("float", "dx", "fem_finite_body: FE element size at the contact line / the "
-                                 "correction grid's dx", lo=0.1, hi=2.0, hi_closed=True),
-    "numerics.fb_cells_x": Key("int", "-", "fem_finite_body: contact cells along x on the coarsest contact grid",
-                               lo=9, hi=201, lo_closed=True, hi_closed=True),
-    "numerics.fb_cells_s": Key("int", "-", "fem_finite_body: contact cells along s on the coarsest contact grid",
-                               lo=9, hi=401, lo_closed=True, hi_closed=True),
-    "numerics.fb_grid_levels": Key("int", "-", "fem_finite_body: contact-grid levels (refined by sqrt 2)", lo=1,
-                                   hi=6, lo_closed=True, hi_closed=True),
-    "numerics.fb_phases": Key("int", "-", "fem_finite_body: lattice phases averaged per contact-grid level", lo=1,
-                              hi=16, lo_closed=True, hi_closed=True),
-    "numerics.fb_scatter_meshes": SCATTER_MESHES_KEY,
+    **SRB_KEYS,
     "tolerances.*.*": tolerance_key("relative tolerance (or contrast band) of model.quantity against the "
                                     "references"),
 }
@@ -163,16 +143,7 @@ DEFAULTS: dict[str, Any] = {
     "numerics.fem_ratio": 1.4142135623730951,
     "numerics.fem_h_contact": 0.7,
     "numerics.fem_grading": 0.4,
-    "numerics.fb_correction_cells_x": 9,
-    "numerics.fb_correction_cells_s": 15,
-    "numerics.fb_correction_levels": 3,
-    "numerics.fb_farfield_levels": 3,
-    "numerics.fb_h_contact": 0.35,
-    "numerics.fb_cells_x": 41,
-    "numerics.fb_cells_s": 81,
-    "numerics.fb_grid_levels": 4,
-    "numerics.fb_phases": 4,
-    "numerics.fb_scatter_meshes": 3,
+    **SRB_DEFAULTS,
 }
 REQUIRED = ("geometry.roller_diameter", "geometry.crown_radius", "geometry.groove_radius_inner",
             "geometry.groove_radius_outer", "geometry.contact_angle", "load.normal", "kinematics.inner_ring_speed")
@@ -184,10 +155,7 @@ DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "materials.", "load.
                             "fem_finite_body": {"params": ("geometry.", "materials.", "load.", "friction.",
                                                            "kinematics.", "roller.", "equilibrium.", "numerics."),
                                                 "reference": True,
-                                                "coarse": {"numerics.fb_correction_levels": 1,
-                                                           "numerics.fb_farfield_levels": 0,
-                                                           "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1,
-                                                           "numerics.fb_scatter_meshes": 0}}}
+                                                "coarse": SRB_COARSE}}
 
 
 def bearing(p: dict[str, Any]) -> sb.BearingGeometry:

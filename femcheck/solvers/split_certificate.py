@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scene import Key
 from .convergence import Certificate, certify, certify_formal
 
 # Formal order of a finite-body correction on its grid: the linear (tent) spreading of the contact tractions onto
@@ -25,11 +24,6 @@ CORRECTION_ORDER = 2.0
 # 0.05-0.15 % from level to level (hertz-point, docs/kinds/point_contact.md); changes below 0.2 % are that scatter,
 # no order can be observed in them (certify's floor), and the estimate is 3 x the larger of the last two changes.
 REMESH_SCATTER = 2e-3
-
-
-# The scene key of the measured re-meshing floor, shared by every finite-body reference
-SCATTER_MESHES_KEY = Key("int", "-", "fem_finite_body: extra meshes of the coarsest correction that measure the "
-                         "re-meshing scatter", lo=0, hi=5, lo_closed=True, hi_closed=True)
 
 
 def scatter_scales(count: int) -> list[float]:
