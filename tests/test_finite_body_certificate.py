@@ -69,21 +69,18 @@ def test_parts_combine_the_far_field_step_from_its_first_level():
 
 
 def test_parts_without_a_far_field_family_or_with_it_missing():
-    """The groove's reference has no far-field family: two parts, the correction certified by the rule it passes
-    (here certify's plain rule: a family that converges faster than second order is not certified by it, where the
-    srb rule extrapolates it at order 2). A reference whose far-field family is missing (a coarse re-solve of level
-    0 only) certifies nothing."""
-    from femcheck.solvers.convergence import certify
-
+    """The groove's reference has no far-field family: two parts, the correction certified by the srb family's
+    rule (a family that converges faster than second order is extrapolated at order 2). A reference whose far-field
+    family is missing (a coarse re-solve of level 0 only) certifies nothing."""
     corr = [{"h": h, "q": 2.0 + 0.3 * h ** 6} for h in H]          # order 6: beyond twice the formal order 2
     scatter = [{"q": corr[0]["q"] * 1.0001}]
     grid = [{"h": h, "q": 3.0 + 0.1 * h, "q_phase_spread": 1e-4} for h in (1.0, 2 ** -0.5, 0.5)]
     two = certify_parts(["q"], corr, None, scatter, grid, 1.0)
     assert "far_field_certificates" not in two and two["combined"]["q"].certified
+    r2 = (H[-2] / H[-1]) ** 2     # extrapolated at the formal order 2, not at the observed 6
+    assert two["correction_certificates"]["q"]["value"] == pytest.approx(
+        corr[-1]["q"] + (corr[-1]["q"] - corr[-2]["q"]) / (r2 - 1.0), rel=1e-12)
     assert two["combined"]["q"].value == pytest.approx(3.0 + (two["correction_certificates"]["q"]["value"]
                                                               - corr[-1]["q"]), rel=1e-12)
-    plain = certify_parts(["q"], corr, None, scatter, grid, 1.0,
-                          correction_rule=lambda h, q, floor: certify(h, q, 2.0, floor=floor))
-    assert not plain["correction_certificates"]["q"]["certified"] and not plain["combined"]["q"].certified
     missing = certify_parts(["q"], corr, [], scatter, grid, 1.0)
     assert not missing["far_field_certificates"]["q"]["certified"] and not missing["combined"]["q"].certified

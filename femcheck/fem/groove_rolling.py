@@ -188,10 +188,12 @@ def _ring_axis(g: dict[str, Any], grid: ContactGrid) -> tuple[tuple, tuple | Non
     return G, (0.0, 0.0, -r0 - 1.0 / kap), (0.0, 1.0, 0.0)
 
 
-def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None):
+def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None, h_contact: float | None = None,
+               layers_per_cell: int = 1):
     """The FE relative compliance of the crowned body and the ring segment (module docstring) on ``grid``, meshed
-    as FE level ``level`` (the section's grading divided by ``numerics.fem_ratio`` per level); raises InputError
-    when the body is longer than its mesh can follow."""
+    as FE level ``level`` (the section's grading divided by ``numerics.fem_ratio`` per level) with ``h_contact``
+    x dx at the contact line (None: ``numerics.fem_h_contact``) and ``layers_per_cell`` element layers per cell
+    along s; raises InputError when the body is longer than its mesh can follow."""
     g = setup(p)
     f = p["numerics.fem_ratio"] ** level
     a, b = g["hertz"].semi_axis_x, g["hertz"].semi_axis_y
@@ -209,7 +211,8 @@ def compliance(p: dict[str, Any], grid: ContactGrid, level: int, progress=None):
     G, axis_point, axis_dir = _ring_axis(g, grid)
     ring = RingBody(G, g["rg"], axis_point, axis_dir, g["m2"], p["numerics.fem_ring_length"] * b,
                     p["numerics.fem_ring_depth"] * b, p["numerics.fem_ring_width"] * b)
-    mesh = MeshSettings(p["numerics.fem_h_contact"], p["numerics.fem_grading"] / f, max(b, 2 * a), 1, 2)
+    h = p["numerics.fem_h_contact"] if h_contact is None else h_contact
+    mesh = MeshSettings(h, p["numerics.fem_grading"] / f, max(b, 2 * a), layers_per_cell, 2)
     return fe_compliance(roller, {"groove": ring}, {"groove": grid}, mesh, progress=progress)
 
 

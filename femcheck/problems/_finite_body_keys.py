@@ -4,8 +4,8 @@ one definition per key, shared by the kinds that read it.
 ``FINITE_BODY_KEYS``: the contact-grid part and the measured re-meshing floor, common to every finite-body
 reference (:mod:`femcheck.solvers.split_certificate`). ``SRB_KEYS`` / ``SRB_DEFAULTS``: the correction and far-field
 family of the spherical roller bearing's FE (:mod:`femcheck.problems._srb_rolling_fb`), which srb-rolling and
-srb-normal share: with the same defaults they read the same FE tables. ``SRB_COARSE``: the overrides that make
-either reference its coarsest level (the coarsest correction on the scene's grid: what
+srb-normal share: with the same defaults they read the same FE tables. ``FINITE_BODY_COARSE`` / ``SRB_COARSE``:
+the overrides that make a finite-body reference its coarsest level (the coarsest correction on the scene's grid: what
 :mod:`femcheck.reference_check` re-solves). Each kind keeps ``numerics.fb_correction_levels`` where its range
 differs (the levels' FE cost).
 """
@@ -57,5 +57,6 @@ SRB_DEFAULTS: dict[str, Any] = {
     "numerics.fb_scatter_meshes": 3,
 }
 
-SRB_COARSE: dict[str, Any] = {"numerics.fb_correction_levels": 1, "numerics.fb_farfield_levels": 0,
-                              "numerics.fb_grid_levels": 1, "numerics.fb_phases": 1, "numerics.fb_scatter_meshes": 0}
+FINITE_BODY_COARSE: dict[str, Any] = {"numerics.fb_correction_levels": 1, "numerics.fb_grid_levels": 1,
+                                      "numerics.fb_phases": 1, "numerics.fb_scatter_meshes": 0}
+SRB_COARSE: dict[str, Any] = {**FINITE_BODY_COARSE, "numerics.fb_farfield_levels": 0}

@@ -12,13 +12,12 @@ The part rules (:func:`family_certificate`):
 
 Combined by :func:`~femcheck.solvers.split_certificate.combine`, the far field's step taken from its first level:
 the correction and contact-grid levels are all solved on the far field's first mesh settings. A reference without a
-far-field family (groove-rolling's) combines two parts, and may certify its correction by another rule
-(:func:`certify_parts`' ``correction_rule``).
+far-field family (groove-rolling's) combines two parts.
 """
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Callable, Sequence
+from typing import Sequence
 
 from .convergence import SAFETY_UNCERTIFIED, Certificate, certify, certify_formal
 from .split_certificate import CORRECTION_ORDER, combine, grid_certificate, remesh_floor
@@ -71,36 +70,32 @@ def correction_certificate(h: Sequence[float], q: Sequence[float], floor: float)
 
 
 def certify_parts(names: Sequence[str], corr_levels: list[dict], far_levels: list[dict] | None,
-                  scatter_levels: list[dict], grid_levels: list[dict], grid_order: float,
-                  correction_rule: Callable[[Sequence[float], Sequence[float], float], Certificate] =
-                  correction_certificate) -> dict:
+                  scatter_levels: list[dict], grid_levels: list[dict], grid_order: float) -> dict:
     """Certificates of ``names`` from the families (level dicts holding ``h`` and the quantities; the grid levels
     also ``<q>_phase_spread``; the far field's first level is the correction's first, on which every other level is
     solved). The re-meshing floor of each quantity is measured on the correction's first level and
-    ``scatter_levels`` (the same mesh re-meshed); ``correction_rule(h, q, floor)`` certifies the correction part.
+    ``scatter_levels`` (the same mesh re-meshed); :func:`correction_certificate` certifies the correction part.
     ``far_levels`` None: the reference has no far-field family (two parts); empty: its far-field part is missing (a
     coarse re-solve of level 0 only) and no quantity is certified. Returns the ``stats`` entries of the reference:
     ``certificates`` (combined), the per-part certificates and ``remesh_floors``; ``combined`` holds the
     :class:`Certificate` objects."""
     floors = {q: remesh_floor(corr_levels[:1] + list(scatter_levels), q) for q in names}
     h_corr, h_grid = [lv["h"] for lv in corr_levels], [lv["h"] for lv in grid_levels]
-    c_corr = {q: correction_rule(h_corr, [lv[q] for lv in corr_levels], floors[q]) for q in names}
+    c_corr = {q: correction_certificate(h_corr, [lv[q] for lv in corr_levels], floors[q]) for q in names}
     c_grid = {q: grid_certificate(h_grid, [lv[q] for lv in grid_levels],
                                   [lv[f"{q}_phase_spread"] for lv in grid_levels], grid_order) for q in names}
     parts = {q: {"contact grid": c_grid[q], "correction": c_corr[q]} for q in names}
     out: dict = {}
-    solved_at: dict[str, dict] = {q: {} for q in names}
     if far_levels is not None:
         h_far = [lv["h"] for lv in far_levels]
         c_far = {q: (family_certificate(h_far, [lv[q] for lv in far_levels], floors[q], None) if far_levels else
                      Certificate(0.0, 0.0, None, 0.0, False, "no far-field levels solved")) for q in names}
         for q in names:
             parts[q]["far field"] = c_far[q]
-            # its step from its first level: the correction's and the contact grid's levels are solved on it
-            if far_levels:
-                solved_at[q]["far field"] = far_levels[0][q]
         out["far_field_certificates"] = _as_dicts(c_far)
-    combined = {q: combine(parts[q], solved_at=solved_at[q]) for q in names}
+    # the far field's step from its first level: the correction's and the contact grid's levels are solved on it
+    combined = {q: combine(parts[q], solved_at={"far field": far_levels[0][q]} if far_levels else None)
+                for q in names}
     return {"combined": combined, "certificates": _as_dicts(combined), "correction_certificates": _as_dicts(c_corr),
             **out, "grid_certificates": _as_dicts(c_grid), "remesh_floors": floors}
 
