@@ -41,6 +41,24 @@ def test_phase_domains_move_the_edge_by_equal_fractions_of_a_cell():
     assert d[0] == 1.3504
 
 
+def test_phase_windows_move_both_edges_or_only_the_rolling_one():
+    both = lp.phase_windows((58, 115), (1.3504, 1.2553), 4)
+    for axis, (n, d0) in enumerate(((58, 1.3504), (115, 1.2553))):
+        e = [n / (2.0 * w[axis]) for w in both]
+        np.testing.assert_allclose(np.diff(e), -0.25, rtol=1e-12)
+        assert both[0][axis] == d0
+    along_x = lp.phase_windows((58, 115), (1.3504, 1.2553), 4, along_s=False)
+    assert [w[0] for w in along_x] == [w[0] for w in both]
+    assert all(w[1] == 1.2553 for w in along_x)
+
+
+def test_level_record_holds_the_level_the_mean_and_the_spread():
+    v = lp.levels(CELLS0, DOMAIN0, np.sqrt(2.0), 2)[1]
+    rec = lp.level_record(v, 2, [{"q": 1.0}, {"q": 3.0}])
+    assert rec == {"nx": 58, "ns": 115, "h": v.h, "domain_x": v.domain[0], "domain_s": v.domain[1], "phases": 2,
+                   "q": 2.0, "q_phase_spread": 2.0}
+
+
 def _levels(phases: int) -> tuple[list[float], list[float]]:
     h, q = [], []
     for v in lp.levels(CELLS0, DOMAIN0, np.sqrt(2.0), 4):

@@ -70,6 +70,25 @@ def phase_domains(cells: int, domain: float, phases: int) -> list[float]:
     return [cells / (2.0 * (e - j / phases)) for j in range(phases)]
 
 
+def phase_windows(cells: tuple[int, int], domain: tuple[float, float], phases: int, along_s: bool = True
+                  ) -> list[tuple[float, float]]:
+    """The (D_x, D_s) window factors of ``phases`` lattice phases of a grid of ``cells`` over +-``domain``
+    semi-axes: both windows dilated together (phase j moves the edge inward by j/K cells along x and along s), or
+    along x only (``along_s`` False: D_s stays ``domain[1]``)."""
+    dx = phase_domains(cells[0], domain[0], phases)
+    ds = phase_domains(cells[1], domain[1], phases) if along_s else [float(domain[1])] * phases
+    return list(zip(dx, ds))
+
+
+def level_record(level: Level, phases: int, samples: list[dict[str, float]]) -> dict[str, float]:
+    """One contact-grid level of a finite-body reference: its cells, size and windows, the phase mean of each
+    quantity and its spread (``<quantity>_phase_spread``)."""
+    mean, spread = phase_mean(samples)
+    return {"nx": level.cells[0], "ns": level.cells[1], "h": level.h, "domain_x": level.domain[0],
+            "domain_s": level.domain[1], "phases": phases, **mean,
+            **{f"{k}_phase_spread": v for k, v in spread.items()}}
+
+
 def phase_mean(samples: list[dict[str, float]]) -> tuple[dict[str, float], dict[str, float]]:
     """Mean over the phases of each quantity and its spread (max - min, same units): the level's value and how far
     a single-phase grid could have been from it."""

@@ -104,8 +104,7 @@ def finite_body(p: dict[str, Any], geom, constants, spec: GridSpec, solver_args:
         the lateral extent's power-law edges to the s lattice); the last solution (another grid or correction)
         starts each fixed point, its tractions giving the first correction field."""
         samples, iterations = [], 0
-        for j, (dx_, ds_) in enumerate(zip(lattice_phase.phase_domains(cells[0], domain[0], phases),
-                                           lattice_phase.phase_domains(cells[1], domain[1], phases))):
+        for j, (dx_, ds_) in enumerate(lattice_phase.phase_windows(cells, domain, phases)):
             if progress and phases > 1:
                 progress(f"fem_finite_body: {label}, contact grid {cells[0]} x {cells[1]}, phase {j + 1}/{phases}")
             sp = replace(spec, cells_x=cells[0], cells_s=cells[1], domain_x=dx_, domain_s=ds_)

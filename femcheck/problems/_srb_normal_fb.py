@@ -125,17 +125,13 @@ def finite_body(p: dict[str, Any], progress=None) -> ModelResult:
     for lv in lattice_phase.levels(cells0, domain0, GRID_RATIO, n_grid, odd=True):
         samples = []
         # both windows dilated together: the x edges snap to the x lattice, the s edges to the s lattice
-        for j, (dx_, ds_) in enumerate(zip(lattice_phase.phase_domains(lv.cells[0], lv.domain[0], phases),
-                                           lattice_phase.phase_domains(lv.cells[1], lv.domain[1], phases))):
+        for j, (dx_, ds_) in enumerate(lattice_phase.phase_windows(lv.cells, lv.domain, phases)):
             if progress:
                 progress(f"fem_finite_body: contact grid {lv.cells[0]} x {lv.cells[1]}, phase {j + 1}/{phases}")
             su = nb.setup(p, *lv.cells, dx_, ds_)
             prev = nb.solve_pair(su, constants, fam.finest, prev)
             samples.append(nb.quantities(su, prev))
-        mean, spread = lattice_phase.phase_mean(samples)
-        grid_levels.append({"nx": lv.cells[0], "ns": lv.cells[1], "h": lv.h, "domain_x": lv.domain[0],
-                            "domain_s": lv.domain[1], "phases": phases, **mean,
-                            **{f"{k}_phase_spread": v for k, v in spread.items()}})
+        grid_levels.append(lattice_phase.level_record(lv, phases, samples))
     parts = certify_parts(QUANTITIES, fam.correction, fam.far_field, fam.scatter, grid_levels, KALKER_ORDER)
     certs = parts.pop("combined")
     quantities = {q: c.value for q, c in certs.items()}

@@ -256,17 +256,14 @@ def finite_body(p: dict[str, Any], problem, numerics, constants, start: Equilibr
         samples = []
         # phases along x only: the lateral window's phase moves sum f_lat by 0.15 % (x: 1.2 %), and dilating it
         # would push the offset windows of mu = 0.3 past the roller's ends
-        for j, dx_ in enumerate(lattice_phase.phase_domains(lv.cells[0], lv.domain[0], phases)):
+        for j, (dx_, ds_) in enumerate(lattice_phase.phase_windows(lv.cells, lv.domain, phases, along_s=False)):
             if progress:
                 progress(f"fem_finite_body: contact grid {lv.cells[0]} x {lv.cells[1]}, phase {j + 1}/{phases}")
-            num = replace(numerics, nx=lv.cells[0], ns=lv.cells[1], domain_x=dx_, domain_s=lv.domain[1])
+            num = replace(numerics, nx=lv.cells[0], ns=lv.cells[1], domain_x=dx_, domain_s=ds_)
             fb = finite_body_equilibrium(problem, num, corr, prev)
             prev = fb.result
             samples.append(_values(problem, fb.result))
-        mean, spread = lattice_phase.phase_mean(samples)
-        grid_levels.append({"nx": lv.cells[0], "ns": lv.cells[1], "h": lv.h, "domain_x": lv.domain[0],
-                            "domain_s": lv.domain[1], "phases": phases, **mean,
-                            **{f"{k}_phase_spread": v for k, v in spread.items()}})
+        grid_levels.append(lattice_phase.level_record(lv, phases, samples))
     names = [q for q in QUANTITIES if q in fam.correction[0]]
     parts = certify_parts(names, fam.correction, fam.far_field, fam.scatter, grid_levels, KALKER_ORDER)
     combined = parts.pop("combined")

@@ -51,7 +51,7 @@ from ..fem.groove_rolling import FEM_DEFAULTS, FEM_SCHEMA
 from ..geometry.groove import GrooveRolling
 from ..result import ModelResult
 from ..scene import Key, Scene, check_body_pair, elastic, material_keys, model_keys, tolerance_key
-from ._finite_body_keys import FINITE_BODY_COARSE, FINITE_BODY_KEYS, SRB_KEYS
+from ._finite_body_keys import FINITE_BODY_COARSE, FINITE_BODY_DEFAULTS, FINITE_BODY_KEYS
 
 MODEL_NAMES = ("cect", "planar", "fem", "fem_finite_body")
 DESIGN_QUANTITIES = ("creepage_x", "friction_power", "p_max")     # the conformal contact's rolling loss first
@@ -97,7 +97,6 @@ SCHEMA: dict[str, Key] = {
     "numerics.fb_correction_levels": Key("int", "-", "fem_finite_body: correction levels (FE mesh and correction "
                                          "grid refined together, as fem's levels)", lo=1, hi=4, lo_closed=True,
                                          hi_closed=True),
-    "numerics.fb_h_contact": SRB_KEYS["numerics.fb_h_contact"],
     **FINITE_BODY_KEYS,
 }
 DEFAULTS: dict[str, Any] = {
@@ -116,16 +115,10 @@ DEFAULTS: dict[str, Any] = {
     "numerics.variable_dq": True,
     **FEM_DEFAULTS,
     "numerics.fb_correction_levels": 3,
-    "numerics.fb_h_contact": 0.35,
-    "numerics.fb_grid_levels": 4,
-    "numerics.fb_phases": 4,
-    "numerics.fb_scatter_meshes": 3,
+    **FINITE_BODY_DEFAULTS,
 }
 REQUIRED = ("geometry.rolling_radius", "geometry.crown_radius", "geometry.groove_radius",
             "geometry.ring_curvature", "load.normal", "friction.mu", "kinematics.speed")
-# fem_finite_body's coarse re-solve: the coarsest correction on the scene's grid, as its stored level 0 the mean
-# over the scene's lattice phases
-FB_COARSE = {k: v for k, v in FINITE_BODY_COARSE.items() if k != "numerics.fb_phases"}
 # fem: a stored reference, keyed on every input it reads (the cect/planar numerics do not enter it)
 DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction.", "materials.", "kinematics.",
                                                "numerics.fem_"), "reference": True,
@@ -133,7 +126,7 @@ DEPENDS: dict[str, dict] = {"fem": {"params": ("geometry.", "load.", "friction."
                             # fem_finite_body: its coarse re-solve is the coarsest correction on the scene's grid
                             "fem_finite_body": {"params": ("geometry.", "load.", "friction.", "materials.",
                                                            "kinematics.", "numerics."), "reference": True,
-                                                "coarse": FB_COARSE}}
+                                                "coarse": FINITE_BODY_COARSE}}
 
 
 def geometry(params: dict[str, Any]) -> GrooveRolling:
